@@ -1,0 +1,89 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// The engine's state: flat arrays over all nodes and elements of all bodies.
+// Nodes and elements of body b are the contiguous ranges [first_node, first_node + node_count)
+// and [first_element, first_element + element_count).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "elements/tet10_mesh.hpp"
+#include "engine/model_spec.hpp"
+
+namespace femdem {
+
+struct Body {
+  std::string name;
+  int material = -1;
+  bool fixed = false;
+  std::int32_t first_node = 0, node_count = 0;
+  std::int32_t first_element = 0, element_count = 0;
+  double mass = 0.0;             // sum of lumped nodal masses = rho V0
+  double reference_volume = 0.0;
+  std::vector<std::int32_t> surface_nodes;  // global node ids on the boundary
+};
+
+struct Wall {
+  std::string name;
+  Vec3 point0 = Vec3::Zero();  // at t = 0
+  Vec3 point = Vec3::Zero();   // now
+  Vec3 normal = Vec3(0, 0, 1);
+  Vec3 velocity = Vec3::Zero();
+  double friction = 0.0;
+  double penalty_factor = 100.0;
+  Vec3 force = Vec3::Zero();  // force the bodies exert on the wall, last step
+};
+
+// Per boundary node of a body that can touch walls: its share of the surface area and the depth
+// of the element behind it; the wall penalty stiffness is penalty_factor * E * area / depth.
+struct SurfaceNode {
+  std::int32_t node = 0;
+  std::int32_t body = 0;
+  double area = 0.0;
+  double depth = 0.0;
+};
+
+struct Model {
+  std::string title;
+  SimulationSettings settings;
+  ContactSettings contact;
+  std::vector<MaterialParams> materials;
+  std::vector<Body> bodies;
+  std::vector<Wall> walls;
+
+  // --- nodes (3 doubles per node for vectors) ---
+  std::int32_t node_count = 0;
+  std::vector<double> X;         // reference coordinates
+  std::vector<double> x;         // current coordinates
+  std::vector<double> v;         // velocity (at the half step between updates)
+  std::vector<double> f_int;     // internal force (element stresses), gathered
+  std::vector<double> f_wall;    // wall contact force
+  std::vector<double> mass;      // lumped (HRZ), one per node
+  std::vector<std::int32_t> node_body;
+  std::vector<std::uint8_t> dof_mode;  // 3 per node: 0 free, 1 fixed, 2 prescribed velocity
+  std::vector<double> dof_velocity;    // 3 per node: prescribed velocity where dof_mode == 2
+
+  // --- elements ---
+  std::int32_t element_count = 0;
+  std::vector<Tet10> conn;
+  std::vector<std::int32_t> element_body;
+  std::vector<std::int32_t> element_material;
+  // Reference shape-function gradients dN/dX at the 4 Gauss points (4 x 10 x 3) and the
+  // Gauss weights times det J0 (4): 124 doubles per element.
+  std::vector<double> dNdX;
+  std::vector<double> gauss_weight;
+  // Stable-step shape factor per element: omega_max * h0 / c_d, from the element eigenproblem.
+  std::vector<double> frequency_factor;
+
+  // --- Gauss-point state (4 per element) ---
+  std::vector<double> stress;  // Cauchy stress, 6 per point: xx yy zz xy yz xz
+  std::vector<double> strain_energy_density;  // per reference volume
+
+  // --- node -> (element, local node) map for the deterministic gather (CSR) ---
+  std::vector<std::int32_t> node_elem_offset;  // node_count + 1
+  std::vector<std::int32_t> node_elem_slot;    // element * 10 + local node
+
+  std::vector<SurfaceNode> surface;
+};
+
+}  // namespace femdem

@@ -1,0 +1,74 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// What a scene describes, resolved and checked by the scene reader (io/), before the engine
+// builds its flat arrays from it. Plain data; every value has its default here.
+#include <array>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "elements/tet10_mesh.hpp"
+#include "materials/material_params.hpp"
+
+namespace femdem {
+
+struct SimulationSettings {
+  double end_time = 0.0;          // required
+  double time_step_safety = 0.5;  // fraction of the stable step
+  double time_step = 0.0;         // > 0: fixed step (still checked against the stable step)
+  double output_interval = 0.0;   // 0: end_time / 50
+  double history_interval = 0.0;  // 0: output_interval / 20
+  Vec3 gravity = Vec3::Zero();
+  int threads = 0;                // 0: all cores
+};
+
+struct BodySpec {
+  std::string name;
+  int material = -1;     // index into ModelSpec::materials
+  Tet10Mesh mesh;        // already rotated and placed
+  Vec3 velocity = Vec3::Zero();
+  Vec3 angular_velocity = Vec3::Zero();  // rad/s about the body's initial centre of mass
+  bool fixed = false;
+};
+
+struct WallSpec {
+  std::string name;
+  Vec3 point = Vec3::Zero();
+  Vec3 normal = Vec3(0, 0, 1);  // normalised by the reader; bodies live on the + side
+  Vec3 velocity = Vec3::Zero();
+  double friction = 0.0;
+  double penalty_factor = 0.0;  // 0: ContactSettings::penalty_factor
+};
+
+// Region of a body's reference configuration whose nodes a constraint acts on.
+struct RegionSpec {
+  enum class Kind { All, Box, Plane } kind = Kind::All;
+  Vec3 box_min = Vec3::Zero(), box_max = Vec3::Zero();
+  Vec3 plane_point = Vec3::Zero(), plane_normal = Vec3(0, 0, 1);
+  double tolerance = 0.0;  // 0: 1e-6 of the body's bounding-box diagonal
+};
+
+struct ConstraintSpec {
+  int body = -1;
+  RegionSpec region;
+  std::array<bool, 3> fix = {false, false, false};
+  std::optional<Vec3> velocity;  // prescribed velocity of the selected nodes (all components)
+};
+
+struct ContactSettings {
+  double penalty_factor = 100.0;  // penalty = factor * E (the thesis' k = a E)
+  double friction = 0.0;
+};
+
+struct ModelSpec {
+  std::string title;
+  SimulationSettings simulation;
+  std::vector<MaterialParams> materials;
+  std::vector<BodySpec> bodies;
+  std::vector<WallSpec> walls;
+  std::vector<ConstraintSpec> constraints;
+  ContactSettings contact;
+};
+
+}  // namespace femdem

@@ -1,0 +1,84 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// The explicit time loop: central differences in kick-drift-kick form (velocities at whole
+// steps, so kinetic energy and outputs are synchronous with positions), automatic stable step.
+#include <cstdint>
+#include <vector>
+
+#include "engine/model.hpp"
+
+namespace femdem {
+
+struct Energies {
+  double kinetic = 0.0;
+  double internal = 0.0;             // stored elastic energy
+  double plastic_dissipation = 0.0;  // accumulated
+  double contact = 0.0;              // penalty energy stored in contacts (walls and bodies)
+  double external_work = 0.0;        // accumulated work of gravity, walls and driven nodes
+  // kinetic + internal + plastic + contact - external_work - (its value at t = 0)
+  double balance() const { return kinetic + internal + plastic_dissipation + contact - external_work; }
+};
+
+struct BodyState {
+  double mass = 0.0;
+  double volume = 0.0;  // current, from the deformed elements
+  Vec3 com = Vec3::Zero();
+  Vec3 vcom = Vec3::Zero();
+  double kinetic_energy = 0.0;
+  Vec3 contact_force = Vec3::Zero();  // walls and other bodies, on this body
+  Vec3 bbox_min = Vec3::Zero(), bbox_max = Vec3::Zero();
+  double max_equivalent_plastic_strain = 0.0;
+};
+
+// Builds the flat model: lumped masses, reference gradients, stable-step factors, constraints,
+// surface nodes. Throws InputError for inverted or degenerate elements (naming body and element).
+Model build_model(const ModelSpec& spec);
+
+class Simulation {
+ public:
+  explicit Simulation(Model model);
+
+  // One step. Throws InstabilityError (with body, element, time and advice) on det F <= 0 or
+  // non-finite values.
+  void step();
+
+  const Model& model() const { return model_; }
+  double time() const { return time_; }
+  std::int64_t steps() const { return steps_; }
+  double dt() const { return dt_; }           // step that the next step() will take
+  double stable_dt() const { return stable_dt_; }  // current stable estimate (before safety)
+
+  Energies energies() const;
+  // (energies().balance() - its initial value) / max(initial total, largest energy seen)
+  double balance_error() const;
+  BodyState body_state(int body) const;
+  Vec3 wall_position(int wall) const { return model_.walls[wall].point; }
+  Vec3 wall_force(int wall) const { return model_.walls[wall].force; }
+
+  // Gauss-point averages per element for output: Cauchy stress (6), von Mises, pressure
+  // (-trace/3), equivalent plastic strain.
+  void element_stress(std::vector<double>& stress6, std::vector<double>& von_mises,
+                      std::vector<double>& pressure, std::vector<double>& eq_plastic) const;
+
+ private:
+  void compute_forces();  // internal + wall contact at current x; updates energies and dt
+  void set_time_step();
+
+  Model model_;
+  double time_ = 0.0;
+  std::int64_t steps_ = 0;
+  double dt_ = 0.0;
+  double stable_dt_ = 0.0;
+  std::vector<double> accel_;        // 3 per node
+  std::vector<double> elem_force_;   // 30 per element
+  std::vector<double> elem_energy_;  // per element
+  std::vector<double> elem_dt_;      // per element stable step
+  std::vector<double> reaction_;     // 3 per node, at constrained dofs
+  double internal_energy_ = 0.0;
+  double contact_energy_ = 0.0;
+  double external_work_ = 0.0;
+  double initial_balance_ = 0.0;
+  double max_energy_ = 0.0;
+};
+
+}  // namespace femdem
