@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// TET10 shape functions in volume coordinates (L0..L3, L0 = 1 - xi - eta - zeta), the 4-point
+// Gauss rule and HRZ lumped mass. Node order: see tet10_mesh.hpp.
+#include <array>
+
+#include "elements/tet10_mesh.hpp"
+
+namespace femdem::tet10 {
+
+inline constexpr int kNodes = 10;
+inline constexpr int kGauss = 4;
+// 4-point rule, exact for quadratics: one coordinate a, three b; each weight 1/4 of the volume.
+inline constexpr double kGaussA = 0.58541019662496845446;
+inline constexpr double kGaussB = 0.13819660112501051518;
+
+// Volume coordinates of Gauss point g: L_g = a, the others b.
+inline std::array<double, 4> gauss_point(int g) {
+  std::array<double, 4> L{kGaussB, kGaussB, kGaussB, kGaussB};
+  L[g] = kGaussA;
+  return L;
+}
+
+// Shape function values at volume coordinates L.
+inline std::array<double, kNodes> shape(const std::array<double, 4>& L) {
+  std::array<double, kNodes> N{};
+  for (int i = 0; i < 4; ++i) N[i] = L[i] * (2.0 * L[i] - 1.0);
+  for (int e = 0; e < 6; ++e) N[4 + e] = 4.0 * L[kTet10Edges[e][0]] * L[kTet10Edges[e][1]];
+  return N;
+}
+
+// Derivatives dN/dxi_k (k = 0..2 for xi, eta, zeta with L1 = xi, L2 = eta, L3 = zeta).
+inline std::array<std::array<double, 3>, kNodes> shape_derivatives(const std::array<double, 4>& L) {
+  // dN/dL_j first, then chain rule with dL0/dxi_k = -1, dL_{k+1}/dxi_k = 1.
+  std::array<std::array<double, 4>, kNodes> dL{};
+  for (int i = 0; i < 4; ++i) dL[i][i] = 4.0 * L[i] - 1.0;
+  for (int e = 0; e < 6; ++e) {
+    const int a = kTet10Edges[e][0], b = kTet10Edges[e][1];
+    dL[4 + e][a] = 4.0 * L[b];
+    dL[4 + e][b] = 4.0 * L[a];
+  }
+  std::array<std::array<double, 3>, kNodes> d{};
+  for (int n = 0; n < kNodes; ++n)
+    for (int k = 0; k < 3; ++k) d[n][k] = dL[n][k + 1] - dL[n][0];
+  return d;
+}
+
+// HRZ lumping of the consistent mass of a straight-sided TET10: the consistent diagonal is
+// 6/420 m (corner) and 32/420 m (mid-edge); scaled to sum to m this gives m/36 and 4m/27
+// (row-sum lumping would give negative corner masses).
+inline constexpr double kHrzCorner = 1.0 / 36.0;
+inline constexpr double kHrzMidEdge = 4.0 / 27.0;
+
+}  // namespace femdem::tet10

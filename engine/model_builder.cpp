@@ -1,0 +1,268 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Turns a ModelSpec into the engine's flat arrays.
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <string>
+
+#include "elements/tet10_frequency.hpp"
+#include "elements/tet10_shape.hpp"
+#include "elements/tet10_surface.hpp"
+#include "engine/errors.hpp"
+#include "engine/simulation.hpp"
+
+namespace femdem {
+namespace {
+
+// Reference gradients and weights of one element; returns false if det J0 <= 0 anywhere.
+bool reference_gradients(const std::vector<Vec3>& nodes, const Tet10& el, double* dNdX, double* w,
+                         double& min_detJ, double& volume) {
+  volume = 0.0;
+  min_detJ = HUGE_VAL;
+  for (int g = 0; g < tet10::kGauss; ++g) {
+    const auto dxi = tet10::shape_derivatives(tet10::gauss_point(g));
+    Eigen::Matrix3d J = Eigen::Matrix3d::Zero();  // J(i,k) = dX_i / dxi_k
+    for (int a = 0; a < 10; ++a)
+      for (int i = 0; i < 3; ++i)
+        for (int k = 0; k < 3; ++k) J(i, k) += nodes[el[a]][i] * dxi[a][k];
+    const double det = J.determinant();
+    min_detJ = std::min(min_detJ, det);
+    if (!(det > 0.0)) return false;
+    const Eigen::Matrix3d Jinv = J.inverse();
+    for (int a = 0; a < 10; ++a)
+      for (int j = 0; j < 3; ++j) {
+        double v = 0.0;
+        for (int k = 0; k < 3; ++k) v += dxi[a][k] * Jinv(k, j);
+        dNdX[g * 30 + 3 * a + j] = v;
+      }
+    w[g] = det / 24.0;  // reference tet volume 1/6, 4 equal weights
+    volume += w[g];
+  }
+  return true;
+}
+
+bool in_region(const RegionSpec& r, const Vec3& p, double tol) {
+  switch (r.kind) {
+    case RegionSpec::Kind::All:
+      return true;
+    case RegionSpec::Kind::Box:
+      return (p.array() >= r.box_min.array() - tol).all() &&
+             (p.array() <= r.box_max.array() + tol).all();
+    case RegionSpec::Kind::Plane:
+      return std::fabs((p - r.plane_point).dot(r.plane_normal.normalized())) <= tol;
+  }
+  return false;
+}
+
+}  // namespace
+
+Model build_model(const ModelSpec& spec) {
+  Model m;
+  m.title = spec.title;
+  m.settings = spec.simulation;
+  m.contact = spec.contact;
+  m.materials = spec.materials;
+
+  std::int32_t nn = 0, ne = 0;
+  for (const auto& b : spec.bodies) {
+    nn += static_cast<std::int32_t>(b.mesh.nodes.size());
+    ne += static_cast<std::int32_t>(b.mesh.elements.size());
+  }
+  m.node_count = nn;
+  m.element_count = ne;
+  m.X.resize(3 * nn);
+  m.v.assign(3 * nn, 0.0);
+  m.mass.assign(nn, 0.0);
+  m.node_body.resize(nn);
+  m.dof_mode.assign(3 * nn, 0);
+  m.dof_velocity.assign(3 * nn, 0.0);
+  m.f_int.assign(3 * nn, 0.0);
+  m.f_wall.assign(3 * nn, 0.0);
+  m.conn.resize(ne);
+  m.element_body.resize(ne);
+  m.element_material.resize(ne);
+  m.dNdX.resize(static_cast<std::size_t>(ne) * 120);
+  m.gauss_weight.resize(static_cast<std::size_t>(ne) * 4);
+  m.frequency_factor.resize(ne);
+  m.stress.assign(static_cast<std::size_t>(ne) * 24, 0.0);
+  m.strain_energy_density.assign(static_cast<std::size_t>(ne) * 4, 0.0);
+
+  std::int32_t node0 = 0, elem0 = 0;
+  for (std::size_t bi = 0; bi < spec.bodies.size(); ++bi) {
+    const BodySpec& bs = spec.bodies[bi];
+    const MaterialParams& mat = spec.materials.at(bs.material);
+    Body body;
+    body.name = bs.name;
+    body.material = bs.material;
+    body.fixed = bs.fixed;
+    body.first_node = node0;
+    body.node_count = static_cast<std::int32_t>(bs.mesh.nodes.size());
+    body.first_element = elem0;
+    body.element_count = static_cast<std::int32_t>(bs.mesh.elements.size());
+    if (body.element_count == 0)
+      throw InputError("the mesh has no elements", {}, 0, 0, "bodies." + bs.name + ".mesh");
+
+    for (std::int32_t i = 0; i < body.node_count; ++i) {
+      for (int k = 0; k < 3; ++k) m.X[3 * (node0 + i) + k] = bs.mesh.nodes[i][k];
+      m.node_body[node0 + i] = static_cast<std::int32_t>(bi);
+    }
+    const double lambda = mat.lame_lambda(), G = mat.shear_modulus();
+    const double cd = std::sqrt(mat.p_wave_modulus() / mat.density);
+    std::string bad;
+    int bad_count = 0;
+    for (std::int32_t e = 0; e < body.element_count; ++e) {
+      const Tet10& local = bs.mesh.elements[e];
+      Tet10 global;
+      for (int a = 0; a < 10; ++a) {
+        if (local[a] < 0 || local[a] >= body.node_count)
+          throw InputError("element " + std::to_string(e) + " refers to node " +
+                               std::to_string(local[a]) + " which does not exist",
+                           {}, 0, 0, "bodies." + bs.name + ".mesh");
+        global[a] = local[a] + node0;
+      }
+      const std::int32_t ge = elem0 + e;
+      m.conn[ge] = global;
+      m.element_body[ge] = static_cast<std::int32_t>(bi);
+      m.element_material[ge] = bs.material;
+      double min_det = 0.0, vol = 0.0;
+      double* dN = m.dNdX.data() + static_cast<std::size_t>(ge) * 120;
+      double* w = m.gauss_weight.data() + static_cast<std::size_t>(ge) * 4;
+      if (!reference_gradients(bs.mesh.nodes, local, dN, w, min_det, vol)) {
+        if (bad_count++ == 0) bad = std::to_string(e);
+        continue;
+      }
+      const double me = mat.density * vol;
+      for (int a = 0; a < 10; ++a)
+        m.mass[global[a]] += me * (a < 4 ? tet10::kHrzCorner : tet10::kHrzMidEdge);
+      body.mass += me;
+      body.reference_volume += vol;
+    }
+    if (bad_count > 0)
+      throw InputError(std::to_string(bad_count) + " inverted or degenerate element(s) (det J <= 0 at a "
+                       "Gauss point), the first is element " + bad + " (0-based, in mesh order)",
+                       {}, 0, 0, "bodies." + bs.name + ".mesh");
+
+    // Stable-step factor: omega_max * h0 / c_d; at run time omega = factor * c_d / h(t).
+#pragma omp parallel for schedule(static)
+    for (std::int32_t e = 0; e < body.element_count; ++e) {
+      const std::int32_t ge = elem0 + e;
+      const double* dN = m.dNdX.data() + static_cast<std::size_t>(ge) * 120;
+      const double* w = m.gauss_weight.data() + static_cast<std::size_t>(ge) * 4;
+      const double vol = w[0] + w[1] + w[2] + w[3];
+      const double omega = tet10_max_frequency(dN, w, mat.density * vol, lambda, G);
+      double xe[12];
+      for (int a = 0; a < 4; ++a)
+        for (int k = 0; k < 3; ++k) xe[3 * a + k] = m.X[3 * m.conn[ge][a] + k];
+      // corner altitude, recomputed the same way as in the time loop
+      const double* p = xe;
+      Vec3 p0(p[0], p[1], p[2]), p1(p[3], p[4], p[5]), p2(p[6], p[7], p[8]), p3(p[9], p[10], p[11]);
+      const double v6 = (p1 - p0).dot((p2 - p0).cross(p3 - p0));
+      const double a2 = std::max(std::max((p1 - p0).cross(p2 - p0).norm(), (p1 - p0).cross(p3 - p0).norm()),
+                                 std::max((p2 - p0).cross(p3 - p0).norm(), (p2 - p1).cross(p3 - p1).norm()));
+      const double h0 = v6 / a2;
+      m.frequency_factor[ge] = omega * h0 / cd;
+    }
+
+    // Initial velocity: translation plus rotation about the initial centre of mass.
+    Vec3 com = Vec3::Zero();
+    for (std::int32_t i = 0; i < body.node_count; ++i)
+      com += m.mass[node0 + i] * Vec3(m.X[3 * (node0 + i)], m.X[3 * (node0 + i) + 1], m.X[3 * (node0 + i) + 2]);
+    com /= body.mass;
+    for (std::int32_t i = 0; i < body.node_count; ++i) {
+      const std::int32_t n = node0 + i;
+      const Vec3 r = Vec3(m.X[3 * n], m.X[3 * n + 1], m.X[3 * n + 2]) - com;
+      const Vec3 vel = bs.velocity + bs.angular_velocity.cross(r);
+      for (int k = 0; k < 3; ++k) m.v[3 * n + k] = bs.fixed ? 0.0 : vel[k];
+      if (bs.fixed)
+        for (int k = 0; k < 3; ++k) m.dof_mode[3 * n + k] = 1;
+    }
+
+    // Boundary nodes with their share of area (HRZ lumping of the 6-node face: corner A/19,
+    // mid-edge 16A/57) and the depth of the element behind the face (3V/A of the corner tet).
+    std::vector<Tet10> global_elems(m.conn.begin() + elem0, m.conn.begin() + elem0 + body.element_count);
+    const auto faces = boundary_faces(global_elems);
+    std::map<std::int32_t, std::pair<double, double>> node_area_depth;  // node -> (area, depth)
+    for (const auto& f : faces) {
+      const Tet10& el = global_elems[f.element];
+      const auto& fl = kTet10Faces[f.face];
+      auto P = [&](int a) { const auto n = el[a]; return Vec3(m.X[3 * n], m.X[3 * n + 1], m.X[3 * n + 2]); };
+      const double area = 0.5 * (P(fl[1]) - P(fl[0])).cross(P(fl[2]) - P(fl[0])).norm();
+      const double v6 = (P(1) - P(0)).dot((P(2) - P(0)).cross(P(3) - P(0)));
+      const double depth = v6 / (2.0 * area);
+      for (int k = 0; k < 6; ++k) {
+        auto& ad = node_area_depth.try_emplace(el[fl[k]], 0.0, HUGE_VAL).first->second;
+        ad.first += area * (k < 3 ? 1.0 / 19.0 : 16.0 / 57.0);
+        ad.second = std::min(ad.second, depth);
+      }
+    }
+    for (const auto& [n, ad] : node_area_depth) {
+      body.surface_nodes.push_back(n);
+      m.surface.push_back({n, static_cast<std::int32_t>(bi), ad.first, ad.second});
+    }
+
+    m.bodies.push_back(std::move(body));
+    node0 += m.bodies.back().node_count;
+    elem0 += m.bodies.back().element_count;
+  }
+
+  // Constraints act on nodes selected in the reference configuration.
+  for (const auto& c : spec.constraints) {
+    const Body& body = m.bodies.at(c.body);
+    Vec3 lo = Vec3::Constant(HUGE_VAL), hi = Vec3::Constant(-HUGE_VAL);
+    for (std::int32_t n = body.first_node; n < body.first_node + body.node_count; ++n) {
+      const Vec3 p(m.X[3 * n], m.X[3 * n + 1], m.X[3 * n + 2]);
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    const double tol = c.region.tolerance > 0.0 ? c.region.tolerance : 1e-6 * (hi - lo).norm();
+    int selected = 0;
+    for (std::int32_t n = body.first_node; n < body.first_node + body.node_count; ++n) {
+      const Vec3 p(m.X[3 * n], m.X[3 * n + 1], m.X[3 * n + 2]);
+      if (!in_region(c.region, p, tol)) continue;
+      ++selected;
+      for (int k = 0; k < 3; ++k) {
+        if (c.velocity) {
+          m.dof_mode[3 * n + k] = 2;
+          m.dof_velocity[3 * n + k] = (*c.velocity)[k];
+          m.v[3 * n + k] = (*c.velocity)[k];
+        } else if (c.fix[k]) {
+          m.dof_mode[3 * n + k] = 1;
+          m.v[3 * n + k] = 0.0;
+        }
+      }
+    }
+    if (selected == 0)
+      throw InputError("the region selects no node of body '" + body.name + "'", {}, 0, 0,
+                       "constraints");
+  }
+  for (std::int32_t n = 0; n < nn; ++n)
+    for (int k = 0; k < 3; ++k)
+      if (m.dof_mode[3 * n + k] == 1) m.v[3 * n + k] = 0.0;
+
+  for (const auto& ws : spec.walls) {
+    Wall w;
+    w.name = ws.name;
+    w.point0 = w.point = ws.point;
+    w.normal = ws.normal.normalized();
+    w.velocity = ws.velocity;
+    w.friction = ws.friction;
+    w.penalty_factor = ws.penalty_factor > 0.0 ? ws.penalty_factor : spec.contact.penalty_factor;
+    m.walls.push_back(w);
+  }
+
+  // node -> element slots, in element order (the fixed order of the deterministic gather)
+  m.node_elem_offset.assign(nn + 1, 0);
+  for (std::int32_t e = 0; e < ne; ++e)
+    for (int a = 0; a < 10; ++a) ++m.node_elem_offset[m.conn[e][a] + 1];
+  for (std::int32_t n = 0; n < nn; ++n) m.node_elem_offset[n + 1] += m.node_elem_offset[n];
+  m.node_elem_slot.resize(m.node_elem_offset[nn]);
+  std::vector<std::int32_t> fill(m.node_elem_offset.begin(), m.node_elem_offset.end() - 1);
+  for (std::int32_t e = 0; e < ne; ++e)
+    for (int a = 0; a < 10; ++a) m.node_elem_slot[fill[m.conn[e][a]]++] = e * 10 + a;
+
+  m.x = m.X;
+  return m;
+}
+
+}  // namespace femdem

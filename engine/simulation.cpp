@@ -1,0 +1,295 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "engine/simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "engine/element_kernel.hpp"
+#include "engine/errors.hpp"
+
+namespace femdem {
+
+Simulation::Simulation(Model model) : model_(std::move(model)) {
+  const auto nn = static_cast<std::size_t>(model_.node_count);
+  const auto ne = static_cast<std::size_t>(model_.element_count);
+  accel_.assign(3 * nn, 0.0);
+  reaction_.assign(3 * nn, 0.0);
+  elem_force_.assign(30 * ne, 0.0);
+  elem_energy_.assign(ne, 0.0);
+  elem_dt_.assign(ne, 0.0);
+  // A node no element uses has no mass: hold it still rather than divide by zero.
+  for (std::size_t n = 0; n < nn; ++n)
+    if (!(model_.mass[n] > 0.0))
+      for (int k = 0; k < 3; ++k) model_.dof_mode[3 * n + k] = 1, model_.v[3 * n + k] = 0.0;
+  compute_forces();
+  initial_balance_ = energies().balance();
+  max_energy_ = std::fabs(initial_balance_);
+  set_time_step();
+}
+
+void Simulation::compute_forces() {
+  Model& m = model_;
+  const std::int32_t ne = m.element_count;
+  const std::int32_t nn = m.node_count;
+  const double* x = m.x.data();
+
+  // 1. elements: independent, written to per-element buffers
+#pragma omp parallel for schedule(static)
+  for (std::int32_t e = 0; e < ne; ++e) {
+    const Tet10& c = m.conn[e];
+    double xe[30];
+    for (int a = 0; a < 10; ++a)
+      for (int k = 0; k < 3; ++k) xe[3 * a + k] = x[3 * c[a] + k];
+    const MaterialParams& mat = m.materials[m.element_material[e]];
+    const ElementResult r = tet10_elastic_forces(
+        xe, m.dNdX.data() + 120 * static_cast<std::size_t>(e),
+        m.gauss_weight.data() + 4 * static_cast<std::size_t>(e), mat.lame_lambda(),
+        mat.shear_modulus(), elem_force_.data() + 30 * static_cast<std::size_t>(e),
+        m.stress.data() + 24 * static_cast<std::size_t>(e));
+    elem_energy_[e] = r.min_J > 0.0 ? r.energy : -HUGE_VAL;
+    const double cd = std::sqrt(mat.p_wave_modulus() / mat.density);
+    const double h = corner_tet_min_altitude(xe);
+    elem_dt_[e] = (r.min_J > 0.0 && h > 0.0) ? 2.0 * h / (m.frequency_factor[e] * cd) : -1.0;
+  }
+
+  // 2. gather per node in the fixed CSR order: same bits for any thread count
+#pragma omp parallel for schedule(static)
+  for (std::int32_t n = 0; n < nn; ++n) {
+    double f[3] = {0.0, 0.0, 0.0};
+    for (std::int32_t s = m.node_elem_offset[n]; s < m.node_elem_offset[n + 1]; ++s) {
+      const std::int32_t slot = m.node_elem_slot[s];
+      const double* fe = elem_force_.data() + 3 * static_cast<std::size_t>(slot);
+      f[0] += fe[0], f[1] += fe[1], f[2] += fe[2];
+    }
+    for (int k = 0; k < 3; ++k) m.f_int[3 * n + k] = f[k];
+  }
+
+  // the run must stop at the first inverted element (lowest index: deterministic)
+  double internal = 0.0;
+  for (std::int32_t e = 0; e < ne; ++e) {
+    if (elem_energy_[e] == -HUGE_VAL || !(elem_dt_[e] > 0.0)) {
+      const Body& b = m.bodies[m.element_body[e]];
+      std::ostringstream msg;
+      msg << "element " << (e - b.first_element) << " of body '" << b.name
+          << "' inverted (det F <= 0) at t = " << time_ << " s, step " << steps_
+          << ". The time step may be too large for this deformation or the mesh too coarse or "
+             "distorted: lower simulation.time_step_safety (now "
+          << m.settings.time_step_safety << "), refine the mesh, or check the loading.";
+      throw InstabilityError(msg.str());
+    }
+    internal += elem_energy_[e];
+  }
+  internal_energy_ = internal;
+
+  // 3. rigid walls: frictionless penalty on boundary nodes
+  std::fill(m.f_wall.begin(), m.f_wall.end(), 0.0);
+  double contact = 0.0;
+  for (auto& w : m.walls) w.force.setZero();
+  if (!m.walls.empty()) {
+    for (const SurfaceNode& s : m.surface) {
+      const Body& b = m.bodies[s.body];
+      if (b.fixed) continue;
+      const double E = m.materials[b.material].youngs_modulus;
+      const Vec3 p(x[3 * s.node], x[3 * s.node + 1], x[3 * s.node + 2]);
+      for (auto& w : m.walls) {
+        const double d = (w.point - p).dot(w.normal);  // penetration depth
+        if (d <= 0.0) continue;
+        const double k = w.penalty_factor * E * s.area / s.depth;
+        const Vec3 f = k * d * w.normal;
+        for (int c = 0; c < 3; ++c) m.f_wall[3 * s.node + c] += f[c];
+        w.force -= f;
+        contact += 0.5 * k * d * d;
+      }
+    }
+  }
+  contact_energy_ = contact;
+
+  // 4. accelerations and reactions of constrained dofs
+  const Vec3& g = m.settings.gravity;
+#pragma omp parallel for schedule(static)
+  for (std::int32_t n = 0; n < nn; ++n) {
+    const double mass = m.mass[n];
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t i = 3 * static_cast<std::size_t>(n) + k;
+      const double f = m.f_wall[i] - m.f_int[i] + mass * g[k];
+      if (m.dof_mode[i] == 0) {
+        accel_[i] = f / mass;
+        reaction_[i] = 0.0;
+      } else {
+        accel_[i] = 0.0;
+        reaction_[i] = -f;  // the support holds the node at constant velocity
+      }
+    }
+  }
+}
+
+void Simulation::set_time_step() {
+  const Model& m = model_;
+  double dt_el = HUGE_VAL;
+  for (double d : elem_dt_) dt_el = std::min(dt_el, d);
+  double dt = dt_el;
+  // Wall contact adds a spring k to boundary nodes near a wall; bound the node's frequency by
+  // the element's plus the spring's (omega^2 <= omega_e^2 + k/m).
+  if (!m.walls.empty()) {
+    const double omega_el = 2.0 / dt_el;
+    for (const SurfaceNode& s : m.surface) {
+      const Body& b = m.bodies[s.body];
+      if (b.fixed) continue;
+      const Vec3 p(m.x[3 * s.node], m.x[3 * s.node + 1], m.x[3 * s.node + 2]);
+      for (const auto& w : m.walls) {
+        if ((p - w.point).dot(w.normal) > s.depth) continue;
+        const double k = w.penalty_factor * m.materials[b.material].youngs_modulus * s.area / s.depth;
+        dt = std::min(dt, 2.0 / std::sqrt(omega_el * omega_el + k / m.mass[s.node]));
+      }
+    }
+  }
+  stable_dt_ = dt;
+  dt_ = m.settings.time_step > 0.0 ? m.settings.time_step : m.settings.time_step_safety * dt;
+}
+
+void Simulation::step() {
+  Model& m = model_;
+  const double dt = dt_;
+  const std::int32_t nn = m.node_count;
+  const Vec3& g = m.settings.gravity;
+
+  // work of supports and walls over the step, trapezoidal in their forces
+  auto boundary_power = [&]() {
+    double p = 0.0;
+    for (std::int32_t n = 0; n < nn; ++n)
+      for (int k = 0; k < 3; ++k) {
+        const std::size_t i = 3 * static_cast<std::size_t>(n) + k;
+        if (m.dof_mode[i] == 2) p += reaction_[i] * m.dof_velocity[i];
+      }
+    for (const auto& w : m.walls) p -= w.force.dot(w.velocity);
+    return p;
+  };
+  const double power0 = boundary_power();
+
+  // kick (half) + drift
+  double gravity_work = 0.0;
+#pragma omp parallel for schedule(static)
+  for (std::int32_t n = 0; n < nn; ++n) {
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t i = 3 * static_cast<std::size_t>(n) + k;
+      if (m.dof_mode[i] == 0)
+        m.v[i] += 0.5 * dt * accel_[i];
+      else
+        m.v[i] = (m.dof_mode[i] == 2) ? m.dof_velocity[i] : 0.0;
+      m.x[i] += dt * m.v[i];
+    }
+  }
+  if (g.squaredNorm() > 0.0) {
+    for (std::int32_t n = 0; n < nn; ++n)
+      for (int k = 0; k < 3; ++k) gravity_work += m.mass[n] * g[k] * dt * m.v[3 * n + k];
+  }
+  for (auto& w : m.walls) w.point += dt * w.velocity;
+  time_ += dt;
+  ++steps_;
+
+  compute_forces();
+
+  // second half kick
+  bool finite = true;
+#pragma omp parallel for schedule(static) reduction(&& : finite)
+  for (std::int32_t n = 0; n < nn; ++n)
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t i = 3 * static_cast<std::size_t>(n) + k;
+      if (m.dof_mode[i] == 0) m.v[i] += 0.5 * dt * accel_[i];
+      finite = finite && std::isfinite(m.v[i]) && std::isfinite(m.x[i]);
+    }
+  if (!finite) {
+    std::ostringstream msg;
+    msg << "non-finite velocity or position at t = " << time_ << " s, step " << steps_
+        << ": the run diverged. Lower simulation.time_step_safety (now "
+        << m.settings.time_step_safety << ") or the wall/contact penalty factor.";
+    throw InstabilityError(msg.str());
+  }
+  external_work_ += gravity_work + 0.5 * dt * (power0 + boundary_power());
+  const Energies en = energies();
+  max_energy_ = std::max({max_energy_, en.kinetic + en.internal + en.contact,
+                          std::fabs(en.external_work)});
+  set_time_step();
+}
+
+Energies Simulation::energies() const {
+  Energies e;
+  double ke = 0.0;
+  for (std::int32_t n = 0; n < model_.node_count; ++n) {
+    const double* v = model_.v.data() + 3 * static_cast<std::size_t>(n);
+    ke += 0.5 * model_.mass[n] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  }
+  e.kinetic = ke;
+  e.internal = internal_energy_;
+  e.contact = contact_energy_;
+  e.external_work = external_work_;
+  return e;
+}
+
+double Simulation::balance_error() const {
+  const double scale = std::max(max_energy_, 1e-300);
+  return (energies().balance() - initial_balance_) / scale;
+}
+
+BodyState Simulation::body_state(int bi) const {
+  const Model& m = model_;
+  const Body& b = m.bodies[bi];
+  BodyState s;
+  s.mass = b.mass;
+  s.bbox_min = Vec3::Constant(HUGE_VAL);
+  s.bbox_max = Vec3::Constant(-HUGE_VAL);
+  double msum = 0.0;
+  for (std::int32_t n = b.first_node; n < b.first_node + b.node_count; ++n) {
+    const Vec3 p(m.x[3 * n], m.x[3 * n + 1], m.x[3 * n + 2]);
+    const Vec3 v(m.v[3 * n], m.v[3 * n + 1], m.v[3 * n + 2]);
+    const double mn = m.mass[n];
+    msum += mn;
+    s.com += mn * p;
+    s.vcom += mn * v;
+    s.kinetic_energy += 0.5 * mn * v.squaredNorm();
+    s.contact_force += Vec3(m.f_wall[3 * n], m.f_wall[3 * n + 1], m.f_wall[3 * n + 2]);
+    s.bbox_min = s.bbox_min.cwiseMin(p);
+    s.bbox_max = s.bbox_max.cwiseMax(p);
+  }
+  s.com /= msum;
+  s.vcom /= msum;
+  // current volume: integral of det F over the reference element
+  double vol = 0.0;
+  for (std::int32_t e = b.first_element; e < b.first_element + b.element_count; ++e) {
+    const double* dN = m.dNdX.data() + 120 * static_cast<std::size_t>(e);
+    const double* w = m.gauss_weight.data() + 4 * static_cast<std::size_t>(e);
+    for (int gp = 0; gp < 4; ++gp) {
+      Eigen::Matrix3d F = Eigen::Matrix3d::Zero();
+      for (int a = 0; a < 10; ++a)
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) F(i, j) += m.x[3 * m.conn[e][a] + i] * dN[gp * 30 + 3 * a + j];
+      vol += w[gp] * F.determinant();
+    }
+  }
+  s.volume = vol;
+  return s;
+}
+
+void Simulation::element_stress(std::vector<double>& stress6, std::vector<double>& von_mises,
+                                std::vector<double>& pressure,
+                                std::vector<double>& eq_plastic) const {
+  const std::int32_t ne = model_.element_count;
+  stress6.assign(6 * static_cast<std::size_t>(ne), 0.0);
+  von_mises.assign(ne, 0.0);
+  pressure.assign(ne, 0.0);
+  eq_plastic.assign(ne, 0.0);
+  for (std::int32_t e = 0; e < ne; ++e) {
+    double s[6] = {};
+    for (int g = 0; g < 4; ++g)
+      for (int k = 0; k < 6; ++k) s[k] += 0.25 * model_.stress[24 * static_cast<std::size_t>(e) + 6 * g + k];
+    for (int k = 0; k < 6; ++k) stress6[6 * e + k] = s[k];
+    const double p = -(s[0] + s[1] + s[2]) / 3.0;
+    pressure[e] = p;
+    const double d0 = s[0] + p, d1 = s[1] + p, d2 = s[2] + p;
+    von_mises[e] = std::sqrt(1.5 * (d0 * d0 + d1 * d1 + d2 * d2 +
+                                    2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5])));
+  }
+}
+
+}  // namespace femdem
