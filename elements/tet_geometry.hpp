@@ -54,7 +54,7 @@ struct MeshQuality {
   double max_aspect_ratio = 0.0;  // worst (largest) aspect ratio, see above
   double min_volume = 0.0;        // signed volume of the corner tetrahedron
   double max_volume = 0.0;
-  double total_volume = 0.0;       // sum of tet10_volume (curved geometry)
+  double total_volume = 0.0;  // sum of tet10_volume (curved geometry)
   double min_scaled_jacobian = 0.0;
   double min_edge = 0.0;  // shortest and longest corner-to-corner edge
   double max_edge = 0.0;
