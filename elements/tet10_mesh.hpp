@@ -9,6 +9,7 @@
 //   4: edge 0-1   5: edge 1-2   6: edge 2-0   7: edge 0-3   8: edge 1-3   9: edge 2-3
 // gmsh's order differs only in the last two (its 8 is edge 2-3, its 9 is edge 1-3).
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
 #include <vector>

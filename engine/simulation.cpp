@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "engine/simulation.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -9,6 +10,12 @@
 #include "engine/errors.hpp"
 
 namespace femdem {
+namespace {
+// Below these sizes a parallel region costs more than it saves (and a busy machine makes
+// waiting threads expensive).
+constexpr std::int32_t kParallelMinElements = 512;
+constexpr std::int32_t kParallelMinNodes = 4096;
+}  // namespace
 
 Simulation::Simulation(Model model) : model_(std::move(model)) {
   const auto nn = static_cast<std::size_t>(model_.node_count);
@@ -35,7 +42,7 @@ void Simulation::compute_forces() {
   const double* x = m.x.data();
 
   // 1. elements: independent, written to per-element buffers
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (ne > kParallelMinElements)
   for (std::int32_t e = 0; e < ne; ++e) {
     const Tet10& c = m.conn[e];
     double xe[30];
@@ -54,7 +61,7 @@ void Simulation::compute_forces() {
   }
 
   // 2. gather per node in the fixed CSR order: same bits for any thread count
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (nn > kParallelMinNodes)
   for (std::int32_t n = 0; n < nn; ++n) {
     double f[3] = {0.0, 0.0, 0.0};
     for (std::int32_t s = m.node_elem_offset[n]; s < m.node_elem_offset[n + 1]; ++s) {
@@ -107,7 +114,7 @@ void Simulation::compute_forces() {
 
   // 4. accelerations and reactions of constrained dofs
   const Vec3& g = m.settings.gravity;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (nn > kParallelMinNodes)
   for (std::int32_t n = 0; n < nn; ++n) {
     const double mass = m.mass[n];
     for (int k = 0; k < 3; ++k) {
@@ -169,7 +176,7 @@ void Simulation::step() {
 
   // kick (half) + drift
   double gravity_work = 0.0;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (nn > kParallelMinNodes)
   for (std::int32_t n = 0; n < nn; ++n) {
     for (int k = 0; k < 3; ++k) {
       const std::size_t i = 3 * static_cast<std::size_t>(n) + k;
@@ -192,7 +199,7 @@ void Simulation::step() {
 
   // second half kick
   bool finite = true;
-#pragma omp parallel for schedule(static) reduction(&& : finite)
+#pragma omp parallel for schedule(static) reduction(&& : finite) if (nn > kParallelMinNodes)
   for (std::int32_t n = 0; n < nn; ++n)
     for (int k = 0; k < 3; ++k) {
       const std::size_t i = 3 * static_cast<std::size_t>(n) + k;
