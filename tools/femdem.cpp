@@ -1,2 +1,235 @@
-// placeholder, replaced by the command-line program
-int main() { return 0; }
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The femdem command-line program: `femdem run|check SCENE ...` (see docs/SCENES.md and
+// /work/shared/SCENE_FORMAT.md). Exit codes: 0 success, 2 bad input, 3 unstable, 1 otherwise.
+#include <fmt/core.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "elements/tet_geometry.hpp"
+#include "engine/errors.hpp"
+#include "femdem_version.hpp"
+#include "io/runner.hpp"
+#include "io/scene_reader.hpp"
+
+#if !__has_include("io/runner.cpp")
+// TEMPORARY until io/runner.cpp lands: a weak reference, so that `check` builds and runs without
+// it. Once runner.cpp exists this block drops out (a weak reference would not pull runner.o out
+// of the static library).
+namespace femdem {
+[[gnu::weak]] int run_scene(const SceneFile& scene, const RunOptions& options);
+}
+#define FEMDEM_RUNNER_IS_WEAK 1
+#endif
+
+namespace {
+
+constexpr int kExitOk = 0;
+constexpr int kExitFailure = 1;
+constexpr int kExitBadInput = 2;
+constexpr int kExitUnstable = 3;
+
+std::string version_string() {
+  return std::string("femdem ") + FEMDEM_VERSION + " (git " + FEMDEM_GIT_REVISION + ")";
+}
+
+std::string vec(const femdem::Vec3& v) {
+  return fmt::format("[{:g}, {:g}, {:g}]", v.x(), v.y(), v.z());
+}
+
+std::string indent(const std::string& text, const std::string& prefix) {
+  std::string out = prefix;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    out += text[i];
+    if (text[i] == '\n' && i + 1 < text.size()) out += prefix;
+  }
+  if (!out.empty() && out.back() != '\n') out += '\n';
+  return out;
+}
+
+// `femdem check`: what the scene builds, without running anything.
+void print_summary(const femdem::SceneFile& scene) {
+  const femdem::ModelSpec& m = scene.model;
+  const auto& s = m.simulation;
+  fmt::print("Scene     {}\n", scene.path);
+  fmt::print("Title     {}\n\n", m.title);
+
+  fmt::print("Simulation\n");
+  fmt::print("  end time          {:g} s\n", s.end_time);
+  if (s.time_step > 0.0)
+    fmt::print("  time step         {:g} s (fixed)\n", s.time_step);
+  else
+    fmt::print("  time step         automatic, {:g} x the stable step\n", s.time_step_safety);
+  fmt::print("  output interval   {:g} s (about {} frames)\n", s.output_interval,
+             static_cast<long long>(std::floor(s.end_time / s.output_interval + 1e-9)) + 1);
+  fmt::print("  history interval  {:g} s\n", s.history_interval);
+  fmt::print("  gravity           {} m/s^2\n", vec(s.gravity));
+  if (s.threads == 0)
+    fmt::print("  threads           all cores\n\n");
+  else
+    fmt::print("  threads           {}\n\n", s.threads);
+
+  fmt::print("Materials ({})\n", m.materials.size());
+  for (const auto& mat : m.materials) {
+    const double cp = std::sqrt(mat.p_wave_modulus() / mat.density);
+    const double cs = std::sqrt(mat.shear_modulus() / mat.density);
+    fmt::print("  {}: elastic, density {:g} kg/m^3, E = {:g} Pa, nu = {:g}\n", mat.name,
+               mat.density, mat.youngs_modulus, mat.poisson_ratio);
+    fmt::print("    K = {:g} Pa, G = {:g} Pa, wave speed {:g} m/s (P), {:g} m/s (S)\n",
+               mat.bulk_modulus(), mat.shear_modulus(), cp, cs);
+  }
+  fmt::print("\n");
+
+  long long total_nodes = 0, total_elements = 0;
+  double total_mass = 0.0;
+  fmt::print("Bodies ({})\n", m.bodies.size());
+  for (const auto& b : m.bodies) {
+    const auto& mat = m.materials[static_cast<std::size_t>(b.material)];
+    const femdem::MeshQuality q = femdem::mesh_quality(b.mesh);
+    const double volume = q.total_volume;
+    const double mass = mat.density * volume;
+    femdem::Vec3 lo = b.mesh.nodes.front(), hi = b.mesh.nodes.front();
+    for (const auto& p : b.mesh.nodes) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    total_nodes += static_cast<long long>(b.mesh.nodes.size());
+    total_elements += static_cast<long long>(b.mesh.elements.size());
+    total_mass += mass;
+    fmt::print("  {}: material {}, {} nodes, {} elements{}\n", b.name, mat.name,
+               b.mesh.nodes.size(), b.mesh.elements.size(), b.fixed ? ", fixed" : "");
+    fmt::print("    volume {:g} m^3, mass {:g} kg\n", volume, mass);
+    fmt::print("    bounding box {} to {} m\n", vec(lo), vec(hi));
+    fmt::print("    velocity {} m/s, angular velocity {} rad/s\n", vec(b.velocity),
+               vec(b.angular_velocity));
+    fmt::print("{}", indent(femdem::format_mesh_quality(q), "    "));
+  }
+  fmt::print("  total: {} nodes, {} elements, mass {:g} kg\n\n", total_nodes, total_elements,
+             total_mass);
+
+  if (!m.walls.empty()) {
+    fmt::print("Walls ({})\n", m.walls.size());
+    for (const auto& w : m.walls) {
+      fmt::print("  {}: point {}, normal {}, velocity {} m/s, friction {:g}, penalty factor {:g}\n",
+                 w.name, vec(w.point), vec(w.normal), vec(w.velocity), w.friction,
+                 w.penalty_factor > 0.0 ? w.penalty_factor : m.contact.penalty_factor);
+    }
+    fmt::print("\n");
+  }
+  if (!m.constraints.empty()) {
+    fmt::print("Constraints ({})\n", m.constraints.size());
+    for (const auto& c : m.constraints) {
+      std::string region;
+      switch (c.region.kind) {
+        case femdem::RegionSpec::Kind::All:
+          region = "all nodes";
+          break;
+        case femdem::RegionSpec::Kind::Box:
+          region = "nodes in the box " + vec(c.region.box_min) + " to " + vec(c.region.box_max);
+          break;
+        case femdem::RegionSpec::Kind::Plane:
+          region = "nodes on the plane through " + vec(c.region.plane_point) + " with normal " +
+                   vec(c.region.plane_normal);
+          break;
+      }
+      std::string action;
+      if (c.velocity) {
+        action = "velocity " + vec(*c.velocity) + " m/s";
+      } else {
+        action = "fix";
+        for (int i = 0; i < 3; ++i)
+          if (c.fix[static_cast<std::size_t>(i)]) action += std::string(" ") + "xyz"[i];
+      }
+      fmt::print("  {}: {}, {}\n", m.bodies[static_cast<std::size_t>(c.body)].name, region, action);
+    }
+    fmt::print("\n");
+  }
+  fmt::print("Contact\n  penalty factor {:g}, friction {:g}\n\n", m.contact.penalty_factor,
+             m.contact.friction);
+  fmt::print("Scene OK.\n");
+}
+
+std::string default_out_dir(const femdem::SceneFile& scene) {
+  return (std::filesystem::path("out") / scene.stem).string() + "/";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"femdem: explicit FEM-DEM simulation of deformable bodies (ten-node tetrahedra)",
+               "femdem"};
+  app.set_version_flag("--version", version_string());
+  app.require_subcommand(1);
+  app.footer(
+      "Exit codes: 0 success, 2 bad input, 3 the simulation became unstable, 1 other errors.\n"
+      "Scene keys: docs/SCENES.md");
+
+  std::string scene_path, out_dir;
+  std::vector<std::string> overrides;
+  int threads = -1;
+  bool quiet = false;
+
+  CLI::App* run = app.add_subcommand("run", "Run a scene and write its results");
+  run->add_option("scene", scene_path, "Scene file (TOML)")->required();
+  run->add_option("--out", out_dir, "Output folder (default: out/<scene file stem>/)");
+  run->add_option("--set", overrides, "Override a scene value: KEY=VALUE (repeatable)")
+      ->allow_extra_args(false);
+  run->add_option("--threads", threads, "Number of threads (0: all cores; default: the scene's)")
+      ->check(CLI::NonNegativeNumber);
+  run->add_flag("--quiet", quiet, "Print nothing but errors");
+
+  CLI::App* check = app.add_subcommand(
+      "check", "Read the scene, build the model and print a summary; run and write nothing");
+  check->add_option("scene", scene_path, "Scene file (TOML)")->required();
+  check->add_option("--set", overrides, "Override a scene value: KEY=VALUE (repeatable)")
+      ->allow_extra_args(false);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);  // prints help/version (code 0) or the error
+    return code == 0 ? kExitOk : kExitBadInput;
+  }
+
+  try {
+    if (check->parsed()) {
+      const femdem::SceneFile scene = femdem::load_scene(scene_path, overrides);
+      print_summary(scene);
+      return kExitOk;
+    }
+    if (run->parsed()) {
+      femdem::SceneFile scene = femdem::load_scene(scene_path, overrides);
+      femdem::RunOptions options;
+      options.out_dir = out_dir.empty() ? default_out_dir(scene) : out_dir;
+      options.threads = threads;
+      options.quiet = quiet;
+      for (int i = 0; i < argc; ++i) {
+        if (i) options.command_line += ' ';
+        options.command_line += argv[i];
+      }
+#ifdef FEMDEM_RUNNER_IS_WEAK
+      if (!&femdem::run_scene) {
+        std::fputs("error: 'run' is not available in this build (no runner)\n", stderr);
+        return kExitFailure;
+      }
+#endif
+      return femdem::run_scene(scene, options);
+    }
+  } catch (const femdem::InputError& e) {
+    std::fprintf(stderr, "error: %s\n", e.describe().c_str());
+    return kExitBadInput;
+  } catch (const femdem::InstabilityError& e) {
+    std::fprintf(stderr, "error: the simulation became unstable: %s\n", e.what());
+    return kExitUnstable;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kExitFailure;
+  }
+  return kExitFailure;
+}

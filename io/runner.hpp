@@ -1,0 +1,21 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// Runs a loaded scene: builds the model, integrates to end_time, writes the outputs into
+// out_dir (results.h5/.xdmf, history.csv, summary.json, run.log).
+#include <string>
+
+#include "io/scene_reader.hpp"
+
+namespace femdem {
+
+struct RunOptions {
+  std::string out_dir;
+  int threads = -1;  // -1: the scene's value
+  bool quiet = false;
+  std::string command_line;
+};
+
+// Returns the process exit code. Throws InputError (bad input) and InstabilityError.
+int run_scene(const SceneFile& scene, const RunOptions& options);
+
+}  // namespace femdem

@@ -1,0 +1,1002 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "io/scene_reader.hpp"
+
+#include <toml++/toml.h>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <string_view>
+
+#include "elements/tet_geometry.hpp"
+#include "engine/errors.hpp"
+#include "io/gmsh_io.hpp"
+#include "io/mesh_generators.hpp"
+#if !__has_include("io/gmsh_io.cpp")
+// TEMPORARY until io/gmsh_io.cpp lands: a weak reference, so that the reader links without it.
+// It drops out once the file exists (a weak reference would not pull gmsh_io.o out of the
+// static library).
+namespace femdem {
+[[gnu::weak]] Tet10Mesh read_gmsh(const std::string& path, GmshReadInfo* info);
+}
+#define FEMDEM_SCENE_GMSH_IS_WEAK 1
+#endif
+
+namespace femdem {
+
+namespace fs = std::filesystem;
+
+void place_mesh(Tet10Mesh& mesh, const Vec3& rotation_degrees, const Vec3& position) {
+  const double k = std::numbers::pi / 180.0;
+  const Eigen::Matrix3d r = (Eigen::AngleAxisd(k * rotation_degrees.z(), Vec3::UnitZ()) *
+                             Eigen::AngleAxisd(k * rotation_degrees.y(), Vec3::UnitY()) *
+                             Eigen::AngleAxisd(k * rotation_degrees.x(), Vec3::UnitX()))
+                                .toRotationMatrix();
+  for (Vec3& p : mesh.nodes) p = r * p + position;
+}
+
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Small helpers
+
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      const std::size_t cost = (std::tolower(static_cast<unsigned char>(a[i - 1])) ==
+                                std::tolower(static_cast<unsigned char>(b[j - 1])))
+                                   ? 0
+                                   : 1;
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + cost});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// " (did you mean 'xxx'?)" for the closest candidate within a few edits, else "".
+std::string did_you_mean(std::string_view word, const std::vector<std::string>& candidates) {
+  std::size_t best = std::string::npos;
+  std::string best_word;
+  for (const auto& c : candidates) {
+    const std::size_t d = edit_distance(word, c);
+    if (d < best) {
+      best = d;
+      best_word = c;
+    }
+  }
+  const std::size_t limit = std::max<std::size_t>(2, word.size() / 3);
+  if (best_word.empty() || best > limit || best >= std::max(word.size(), best_word.size()))
+    return {};
+  return " (did you mean '" + best_word + "'?)";
+}
+
+std::string join(const std::vector<std::string>& items, std::string_view sep = ", ") {
+  std::string s;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (i) s += sep;
+    s += items[i];
+  }
+  return s;
+}
+
+std::string trim(std::string_view s) {
+  std::size_t b = 0, e = s.size();
+  while (b < e && std::isspace(static_cast<unsigned char>(s[b]))) ++b;
+  while (e > b && std::isspace(static_cast<unsigned char>(s[e - 1]))) --e;
+  return std::string(s.substr(b, e - b));
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+std::string type_name(const toml::node& n) {
+  switch (n.type()) {
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a number";
+    case toml::node_type::boolean:
+      return "a boolean";
+    default:
+      return "a date/time";
+  }
+}
+
+std::string format_number(double v) {
+  std::ostringstream s;
+  s.precision(17);
+  s << v;
+  return s.str();
+}
+
+// A TOML basic string literal holding s.
+std::string toml_string_literal(std::string_view s) {
+  std::string out = "\"";
+  for (char c : s) {
+    switch (c) {
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      case '\r':
+        out += "\\r";
+        break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20) {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(c));
+          out += buf;
+        } else {
+          out += c;
+        }
+    }
+  }
+  return out + "\"";
+}
+
+const std::vector<std::string> kAvailableModels = {"elastic"};
+const std::vector<std::string> kPlannedModels = {"von_mises", "drucker_prager", "mohr_coulomb",
+                                                 "piecewise_drucker_prager"};
+const std::vector<std::string> kGenerators = {"box", "cylinder", "sphere"};
+const std::vector<std::string> kCadExtensions = {".stl", ".obj",  ".ply", ".off", ".step",
+                                                 ".stp", ".iges", ".igs", ".3mf", ".dae",
+                                                 ".fbx", ".gltf", ".glb", ".brep"};
+
+// ---------------------------------------------------------------------------------------------
+// The reader: walks the (overridden) TOML tree, checks it, fills the ModelSpec and the resolved
+// scene.
+
+class Reader {
+ public:
+  Reader(std::string scene_path, fs::path base_dir)
+      : scene_path_(std::move(scene_path)), base_dir_(std::move(base_dir)) {}
+
+  void apply_override(toml::table& root, const std::string& text);
+  ModelSpec read(const toml::table& root, const std::string& stem, toml::table& resolved);
+
+ private:
+  struct Location {
+    std::string file;
+    int line = 0, column = 0;
+    std::string note;  // " (set by --set ...)" for values from the command line
+  };
+
+  Location locate(const toml::node* node) const;
+  Location locate(const toml::source_region& region, const toml::node* fallback) const;
+  [[noreturn]] void fail(const toml::node* node, const std::string& key,
+                         const std::string& message) const;
+  [[noreturn]] void fail_at(const Location& at, const std::string& key,
+                            const std::string& message) const;
+
+  static std::string dotted(const std::string& prefix, std::string_view key) {
+    return prefix.empty() ? std::string(key) : prefix + "." + std::string(key);
+  }
+
+  // Unknown keys are reported first, so that a typo is not also reported as a missing value.
+  void check_keys(const toml::table& t, const std::string& prefix,
+                  const std::vector<std::string>& allowed, const std::string& context = {}) const;
+  const toml::table& require_table(const toml::node* n, const std::string& key) const;
+
+  std::optional<double> opt_number(const toml::table& t, std::string_view k,
+                                   const std::string& prefix) const;
+  double number(const toml::table& t, std::string_view k, const std::string& prefix,
+                std::optional<double> def, const toml::node* owner) const;
+  double positive(const toml::table& t, std::string_view k, const std::string& prefix,
+                  std::optional<double> def, const toml::node* owner) const;
+  std::optional<std::string> opt_string(const toml::table& t, std::string_view k,
+                                        const std::string& prefix) const;
+  std::string string(const toml::table& t, std::string_view k, const std::string& prefix,
+                     const toml::node* owner) const;
+  std::optional<Vec3> opt_vec3(const toml::table& t, std::string_view k,
+                               const std::string& prefix) const;
+  bool boolean(const toml::table& t, std::string_view k, const std::string& prefix, bool def) const;
+  std::optional<std::int64_t> opt_integer(const toml::table& t, std::string_view k,
+                                          const std::string& prefix) const;
+
+  // The tables of an array of tables, with their error-key prefixes ("bodies.ball" or
+  // "bodies[2]" while the name is missing).
+  std::vector<std::pair<const toml::table*, std::string>> entries(const toml::table& root,
+                                                                  const std::string& key) const;
+  std::string entry_name(const toml::table& t, const std::string& prefix,
+                         std::set<std::string>& taken, const std::string& what,
+                         std::optional<std::string> def = {}) const;
+
+  void read_simulation(const toml::table& root, ModelSpec& spec, toml::table& out) const;
+  void read_materials(const toml::table& root, ModelSpec& spec, toml::array& out) const;
+  void read_bodies(const toml::table& root, ModelSpec& spec, toml::array& out,
+                   std::set<std::string>& names) const;
+  Tet10Mesh read_mesh(const toml::table& mesh, const std::string& prefix, toml::table& out) const;
+  void read_walls(const toml::table& root, ModelSpec& spec, toml::array& out,
+                  std::set<std::string>& names) const;
+  void read_constraints(const toml::table& root, ModelSpec& spec, toml::array& out) const;
+  RegionSpec read_region(const toml::table& c, const std::string& prefix, toml::table& out) const;
+  void read_contact(const toml::table& root, ModelSpec& spec, toml::table& out) const;
+
+  std::string scene_path_;
+  fs::path base_dir_;
+  std::map<const toml::node*, std::string> override_nodes_;  // nodes created by --set
+};
+
+Reader::Location Reader::locate(const toml::node* node) const {
+  if (!node) return {scene_path_, 0, 0, {}};
+  return locate(node->source(), node);
+}
+
+Reader::Location Reader::locate(const toml::source_region& region,
+                                const toml::node* fallback) const {
+  if (region.path && *region.path != scene_path_)  // parsed from an override
+    return {"", 0, 0, " (set by " + *region.path + ")"};
+  if (region.path && region.begin)
+    return {scene_path_,
+            static_cast<int>(region.begin.line),
+            static_cast<int>(region.begin.column),
+            {}};
+  if (fallback) {
+    if (auto it = override_nodes_.find(fallback); it != override_nodes_.end())
+      return {"", 0, 0, " (set by " + it->second + ")"};
+    if (&fallback->source() != &region) return locate(fallback);
+  }
+  return {scene_path_, 0, 0, {}};
+}
+
+void Reader::fail(const toml::node* node, const std::string& key,
+                  const std::string& message) const {
+  fail_at(locate(node), key, message);
+}
+
+void Reader::fail_at(const Location& at, const std::string& key, const std::string& message) const {
+  throw InputError(message + at.note, at.file, at.line, at.column, key);
+}
+
+void Reader::check_keys(const toml::table& t, const std::string& prefix,
+                        const std::vector<std::string>& allowed, const std::string& context) const {
+  for (const auto& [k, v] : t) {
+    const std::string name(k.str());
+    if (std::find(allowed.begin(), allowed.end(), name) != allowed.end()) continue;
+    std::string msg = "unknown key '" + name + "'";
+    if (!context.empty()) msg += " " + context;
+    msg += did_you_mean(name, allowed);
+    if (allowed.empty())
+      msg += "; no keys are allowed here";
+    else
+      msg += "; allowed: " + join(allowed);
+    fail_at(locate(k.source(), &v), dotted(prefix, name), msg);
+  }
+}
+
+const toml::table& Reader::require_table(const toml::node* n, const std::string& key) const {
+  if (!n->is_table()) fail(n, key, "expected a table, got " + type_name(*n));
+  return *n->as_table();
+}
+
+std::optional<double> Reader::opt_number(const toml::table& t, std::string_view k,
+                                         const std::string& prefix) const {
+  const toml::node* n = t.get(k);
+  if (!n) return std::nullopt;
+  double v = 0.0;
+  if (auto i = n->as_integer())
+    v = static_cast<double>(i->get());
+  else if (auto f = n->as_floating_point())
+    v = f->get();
+  else
+    fail(n, dotted(prefix, k), "expected a number, got " + type_name(*n));
+  if (!std::isfinite(v)) fail(n, dotted(prefix, k), "must be a finite number");
+  return v;
+}
+
+double Reader::number(const toml::table& t, std::string_view k, const std::string& prefix,
+                      std::optional<double> def, const toml::node* owner) const {
+  if (auto v = opt_number(t, k, prefix)) return *v;
+  if (!def) fail(owner, dotted(prefix, k), "required value is missing");
+  return *def;
+}
+
+double Reader::positive(const toml::table& t, std::string_view k, const std::string& prefix,
+                        std::optional<double> def, const toml::node* owner) const {
+  const double v = number(t, k, prefix, def, owner);
+  if (t.get(k) && !(v > 0.0))
+    fail(t.get(k), dotted(prefix, k), "must be positive, got " + format_number(v));
+  return v;
+}
+
+std::optional<std::string> Reader::opt_string(const toml::table& t, std::string_view k,
+                                              const std::string& prefix) const {
+  const toml::node* n = t.get(k);
+  if (!n) return std::nullopt;
+  if (!n->is_string()) fail(n, dotted(prefix, k), "expected a string, got " + type_name(*n));
+  return n->as_string()->get();
+}
+
+std::string Reader::string(const toml::table& t, std::string_view k, const std::string& prefix,
+                           const toml::node* owner) const {
+  auto s = opt_string(t, k, prefix);
+  if (!s) fail(owner, dotted(prefix, k), "required value is missing");
+  return *s;
+}
+
+std::optional<Vec3> Reader::opt_vec3(const toml::table& t, std::string_view k,
+                                     const std::string& prefix) const {
+  const toml::node* n = t.get(k);
+  if (!n) return std::nullopt;
+  const std::string key = dotted(prefix, k);
+  const toml::array* a = n->as_array();
+  if (!a) fail(n, key, "expected an array of 3 numbers [x, y, z], got " + type_name(*n));
+  if (a->size() != 3)
+    fail(n, key, "expected 3 numbers [x, y, z], got " + std::to_string(a->size()));
+  Vec3 v;
+  for (int i = 0; i < 3; ++i) {
+    const toml::node& e = *a->get(static_cast<std::size_t>(i));
+    if (auto x = e.as_integer())
+      v[i] = static_cast<double>(x->get());
+    else if (auto f = e.as_floating_point())
+      v[i] = f->get();
+    else
+      fail(
+          &e, key,
+          "expected 3 numbers [x, y, z], element " + std::to_string(i + 1) + " is " + type_name(e));
+    if (!std::isfinite(v[i])) fail(&e, key, "must hold finite numbers");
+  }
+  return v;
+}
+
+bool Reader::boolean(const toml::table& t, std::string_view k, const std::string& prefix,
+                     bool def) const {
+  const toml::node* n = t.get(k);
+  if (!n) return def;
+  if (!n->is_boolean()) fail(n, dotted(prefix, k), "expected true or false, got " + type_name(*n));
+  return n->as_boolean()->get();
+}
+
+std::optional<std::int64_t> Reader::opt_integer(const toml::table& t, std::string_view k,
+                                                const std::string& prefix) const {
+  const toml::node* n = t.get(k);
+  if (!n) return std::nullopt;
+  if (!n->is_integer()) fail(n, dotted(prefix, k), "expected an integer, got " + type_name(*n));
+  return n->as_integer()->get();
+}
+
+std::vector<std::pair<const toml::table*, std::string>> Reader::entries(
+    const toml::table& root, const std::string& key) const {
+  std::vector<std::pair<const toml::table*, std::string>> out;
+  const toml::node* n = root.get(key);
+  if (!n) return out;
+  const toml::array* a = n->as_array();
+  if (!a)
+    fail(n, key,
+         "expected an array of tables (write each entry as [[" + key + "]]), got " + type_name(*n));
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    const toml::node& e = *a->get(i);
+    std::string prefix = key + "[" + std::to_string(i) + "]";
+    if (!e.is_table())
+      fail(&e, prefix,
+           "expected a table (write each entry as [[" + key + "]]), got " + type_name(e));
+    const toml::table& t = *e.as_table();
+    if (const toml::node* nm = t.get("name");
+        nm && nm->is_string() && !nm->as_string()->get().empty())
+      prefix = key + "." + nm->as_string()->get();
+    out.emplace_back(&t, prefix);
+  }
+  return out;
+}
+
+std::string Reader::entry_name(const toml::table& t, const std::string& prefix,
+                               std::set<std::string>& taken, const std::string& what,
+                               std::optional<std::string> def) const {
+  std::string name;
+  if (auto s = opt_string(t, "name", prefix))
+    name = *s;
+  else if (def)
+    name = *def;
+  else
+    fail(&t, dotted(prefix, "name"), "required value is missing (every " + what + " needs a name)");
+  const toml::node* n = t.get("name");
+  if (name.empty()) fail(n, dotted(prefix, "name"), "must not be empty");
+  for (char c : name)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-'))
+      fail(n ? n : &t, dotted(prefix, "name"),
+           "'" + name + "': names may contain only letters, digits, '_' and '-'");
+  if (!taken.insert(name).second)
+    fail(n ? n : &t, dotted(prefix, "name"),
+         "duplicate name '" + name + "' (names of " + what + "s" +
+             (what == "material" ? "" : " and of the other bodies and walls") + " must be unique)");
+  return name;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Overrides
+
+void Reader::apply_override(toml::table& root, const std::string& text) {
+  const std::string origin = "--set " + text;
+  const std::size_t eq = text.find('=');
+  if (eq == std::string::npos)
+    throw InputError("expected KEY=VALUE, e.g. simulation.end_time=1e-3 (in " + origin + ")", {}, 0,
+                     0, trim(text));
+  const std::string key = trim(std::string_view(text).substr(0, eq));
+  const std::string value_text = trim(std::string_view(text).substr(eq + 1));
+  std::vector<std::string> parts;
+  {
+    std::size_t start = 0;
+    while (true) {
+      const std::size_t dot = key.find('.', start);
+      parts.push_back(trim(std::string_view(key).substr(start, dot - start)));
+      if (dot == std::string::npos) break;
+      start = dot + 1;
+    }
+  }
+  for (const auto& p : parts)
+    if (p.empty()) throw InputError("malformed key (empty part) in " + origin, {}, 0, 0, key);
+
+  // The value: TOML if it parses as one, else a bare string.
+  toml::table parsed;
+  try {
+    parsed = toml::parse("v = " + value_text, origin);
+  } catch (const toml::parse_error&) {
+    parsed = toml::parse("v = " + toml_string_literal(value_text), origin);
+  }
+  if (parsed.size() != 1 || !parsed.get("v"))
+    parsed = toml::parse("v = " + toml_string_literal(value_text), origin);
+  toml::node& value = *parsed.get("v");
+
+  toml::table* table = &root;
+  std::string walked;
+  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    const std::string& part = parts[i];
+    walked = walked.empty() ? part : walked + "." + part;
+    toml::node* child = table->get(part);
+    if (!child) {
+      auto [it, inserted] = table->insert(part, toml::table{});
+      (void)inserted;
+      override_nodes_[&it->second] = origin;
+      table = it->second.as_table();
+      continue;
+    }
+    if (toml::table* t = child->as_table()) {
+      table = t;
+      continue;
+    }
+    if (toml::array* a = child->as_array(); a && a->is_array_of_tables()) {
+      // The next part names an entry.
+      const std::string& name = parts[++i];
+      std::vector<std::string> names;
+      toml::table* found = nullptr;
+      for (auto& e : *a) {
+        toml::table& t = *e.as_table();
+        if (const toml::node* nm = t.get("name"); nm && nm->is_string()) {
+          names.push_back(nm->as_string()->get());
+          if (names.back() == name) found = &t;
+        }
+      }
+      if (!found)
+        throw InputError(
+            "no entry of '" + walked + "' is named '" + name + "'" + did_you_mean(name, names) +
+                (names.empty() ? "" : "; names: " + join(names)) + " (in " + origin + ")",
+            {}, 0, 0, key);
+      walked += "." + name;
+      if (i + 1 == parts.size())
+        throw InputError("cannot replace a whole entry; set its keys one by one, e.g. " + walked +
+                             ".KEY=VALUE (in " + origin + ")",
+                         {}, 0, 0, key);
+      table = found;
+      continue;
+    }
+    throw InputError("'" + walked + "' is " + type_name(*child) +
+                         ", not a table or a named array of tables (in " + origin + ")",
+                     {}, 0, 0, key);
+  }
+  // Move the value in: moving keeps its source region (path = the override text).
+  value.visit([&](auto&& v) { table->insert_or_assign(parts.back(), std::move(v)); });
+  override_nodes_[table->get(parts.back())] = origin;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Sections
+
+void Reader::read_simulation(const toml::table& root, ModelSpec& spec, toml::table& out) const {
+  const toml::node* n = root.get("simulation");
+  if (!n) fail(&root, "simulation", "required table [simulation] is missing (it needs end_time)");
+  const toml::table& t = require_table(n, "simulation");
+  const std::string p = "simulation";
+  check_keys(t, p,
+             {"end_time", "time_step_safety", "time_step", "output_interval", "history_interval",
+              "gravity", "threads"});
+  SimulationSettings& s = spec.simulation;
+  s.end_time = positive(t, "end_time", p, std::nullopt, &t);
+  s.time_step_safety = positive(t, "time_step_safety", p, s.time_step_safety, &t);
+  if (s.time_step_safety > 1.0)
+    fail(t.get("time_step_safety"), "simulation.time_step_safety",
+         "must be in (0, 1] (a fraction of the stable time step), got " +
+             format_number(s.time_step_safety));
+  s.time_step = positive(t, "time_step", p, 0.0, &t);
+  s.output_interval = positive(t, "output_interval", p, s.end_time / 50.0, &t);
+  s.history_interval = positive(t, "history_interval", p, s.output_interval / 20.0, &t);
+  if (auto g = opt_vec3(t, "gravity", p)) s.gravity = *g;
+  if (auto th = opt_integer(t, "threads", p)) {
+    if (*th < 0 || *th > 4096)
+      fail(t.get("threads"), "simulation.threads",
+           "must be 0 (all cores) or a positive number of threads, got " + std::to_string(*th));
+    s.threads = static_cast<int>(*th);
+  }
+  out.insert_or_assign("end_time", s.end_time);
+  out.insert_or_assign("time_step_safety", s.time_step_safety);
+  if (s.time_step > 0.0) out.insert_or_assign("time_step", s.time_step);
+  out.insert_or_assign("output_interval", s.output_interval);
+  out.insert_or_assign("history_interval", s.history_interval);
+  out.insert_or_assign("gravity", toml::array{s.gravity.x(), s.gravity.y(), s.gravity.z()});
+  out.insert_or_assign("threads", s.threads);
+}
+
+void Reader::read_materials(const toml::table& root, ModelSpec& spec, toml::array& out) const {
+  std::set<std::string> names;
+  for (const auto& [tp, p] : entries(root, "materials")) {
+    const toml::table& t = *tp;
+    // The model decides which keys are allowed, so it comes first.
+    const std::string model = string(t, "model", p, &t);
+    const toml::node* mn = t.get("model");
+    if (std::find(kPlannedModels.begin(), kPlannedModels.end(), model) != kPlannedModels.end())
+      fail(mn, dotted(p, "model"),
+           "material model '" + model + "' is not available yet in this version (available: " +
+               join(kAvailableModels) + ")");
+    if (std::find(kAvailableModels.begin(), kAvailableModels.end(), model) ==
+        kAvailableModels.end()) {
+      std::vector<std::string> all = kAvailableModels;
+      all.insert(all.end(), kPlannedModels.begin(), kPlannedModels.end());
+      fail(mn, dotted(p, "model"),
+           "unknown material model '" + model + "'" + did_you_mean(model, all) +
+               "; available: " + join(kAvailableModels));
+    }
+    check_keys(t, p, {"name", "model", "density", "youngs_modulus", "poisson_ratio"},
+               "for model '" + model + "'");
+    MaterialParams m;
+    m.name = entry_name(t, p, names, "material");
+    m.model = MaterialModel::Elastic;
+    m.density = positive(t, "density", p, std::nullopt, &t);
+    m.youngs_modulus = positive(t, "youngs_modulus", p, std::nullopt, &t);
+    m.poisson_ratio = number(t, "poisson_ratio", p, std::nullopt, &t);
+    if (!(m.poisson_ratio > -1.0 && m.poisson_ratio < 0.5))
+      fail(t.get("poisson_ratio"), dotted(p, "poisson_ratio"),
+           "must lie in (-1, 0.5), got " + format_number(m.poisson_ratio));
+    spec.materials.push_back(m);
+    toml::table o;
+    o.insert_or_assign("name", m.name);
+    o.insert_or_assign("model", model);
+    o.insert_or_assign("density", m.density);
+    o.insert_or_assign("youngs_modulus", m.youngs_modulus);
+    o.insert_or_assign("poisson_ratio", m.poisson_ratio);
+    out.push_back(std::move(o));
+  }
+}
+
+Tet10Mesh Reader::read_mesh(const toml::table& mesh, const std::string& bp,
+                            toml::table& out) const {
+  const std::string p = dotted(bp, "mesh");
+  const bool has_gen = mesh.contains("generator"), has_file = mesh.contains("file");
+  if (has_gen && has_file) fail(&mesh, p, "give either 'generator' or 'file', not both");
+  if (!has_gen && !has_file)
+    fail(&mesh, p,
+         "needs 'generator' (\"box\", \"cylinder\", \"sphere\") or 'file' (a gmsh .msh file)");
+
+  if (has_gen) {
+    const std::string gen = string(mesh, "generator", p, &mesh);
+    const toml::node* gn = mesh.get("generator");
+    std::vector<std::string> allowed = {"generator", "element_size"};
+    if (gen == "box")
+      allowed.push_back("size");
+    else if (gen == "cylinder")
+      allowed.insert(allowed.end(), {"radius", "length"});
+    else if (gen == "sphere")
+      allowed.push_back("radius");
+    else
+      fail(gn, dotted(p, "generator"),
+           "unknown mesh generator '" + gen + "'" + did_you_mean(gen, kGenerators) +
+               "; available: " + join(kGenerators));
+    check_keys(mesh, p, allowed, "for generator '" + gen + "'");
+    const double h = positive(mesh, "element_size", p, std::nullopt, &mesh);
+    out.insert_or_assign("generator", gen);
+    out.insert_or_assign("element_size", h);
+    Vec3 size = Vec3::Zero();
+    double radius = 0.0, length = 0.0;
+    if (gen == "box") {
+      auto s = opt_vec3(mesh, "size", p);
+      if (!s) fail(&mesh, dotted(p, "size"), "required value is missing ([lx, ly, lz] in m)");
+      if (!(s->minCoeff() > 0.0))
+        fail(mesh.get("size"), dotted(p, "size"), "all three lengths must be positive");
+      size = *s;
+      out.insert_or_assign("size", toml::array{size.x(), size.y(), size.z()});
+    } else {
+      radius = positive(mesh, "radius", p, std::nullopt, &mesh);
+      out.insert_or_assign("radius", radius);
+      if (gen == "cylinder") {
+        length = positive(mesh, "length", p, std::nullopt, &mesh);
+        out.insert_or_assign("length", length);
+      }
+    }
+    try {
+      // Counted first, so that a typo in element_size fails fast instead of exhausting memory.
+      if (gen == "box") {
+        box_element_count(size, h);
+        return generate_box(size, h);
+      }
+      if (gen == "cylinder") {
+        cylinder_element_count(radius, length, h);
+        return generate_cylinder(radius, length, h);
+      }
+      sphere_element_count(radius, h);
+      return generate_sphere(radius, h);
+    } catch (const InputError& e) {
+      fail(mesh.get("element_size"), dotted(p, "element_size"),
+           "cannot generate the mesh: " + std::string(e.what()));
+    } catch (const std::exception& e) {
+      fail(&mesh, p, "cannot generate the mesh: " + std::string(e.what()));
+    }
+  }
+
+  // A mesh file.
+  const std::string file = string(mesh, "file", p, &mesh);
+  const toml::node* fn = mesh.get("file");
+  const std::string fkey = dotted(p, "file");
+  if (file.empty()) fail(fn, fkey, "must not be empty");
+  const fs::path full = fs::path(file).is_absolute() ? fs::path(file) : base_dir_ / file;
+  const std::string ext = lower(fs::path(file).extension().string());
+  const bool is_cad =
+      std::find(kCadExtensions.begin(), kCadExtensions.end(), ext) != kCadExtensions.end();
+  if (ext == ".msh")
+    check_keys(mesh, p, {"file"}, "for a gmsh .msh file (it is used as meshed)");
+  else if (is_cad)
+    check_keys(mesh, p, {"file", "element_size"}, "for a CAD surface file");
+  else
+    fail(fn, fkey,
+         "unsupported mesh file type '" + (ext.empty() ? std::string("(none)") : ext) +
+             "': use a gmsh volume mesh (.msh) or a CAD surface (" + join(kCadExtensions, " ") +
+             ")");
+  std::error_code ec;
+  if (!fs::exists(full, ec))
+    fail(fn, fkey,
+         "mesh file '" + full.string() + "' does not exist (relative paths are " +
+             "resolved against the scene's folder)");
+  if (!fs::is_regular_file(full, ec)) fail(fn, fkey, "'" + full.string() + "' is not a file");
+  if (!std::ifstream(full).good()) fail(fn, fkey, "cannot read mesh file '" + full.string() + "'");
+  out.insert_or_assign("file", file);
+  if (is_cad) {
+    if (mesh.contains("element_size")) positive(mesh, "element_size", p, std::nullopt, &mesh);
+    fail(fn, fkey,
+         "CAD import is not available yet in this version: mesh '" + file +
+             "' into a second-order tetrahedral gmsh .msh file and use mesh = { file = ... }");
+  }
+#ifdef FEMDEM_SCENE_GMSH_IS_WEAK
+  if (!&read_gmsh) fail(fn, fkey, "gmsh import is not built into this version");
+#endif
+  Tet10Mesh m;
+  try {
+    m = read_gmsh(full.string());
+  } catch (const InputError& e) {
+    fail(fn, fkey, "bad mesh: " + e.describe());
+  } catch (const std::exception& e) {
+    fail(fn, fkey, "cannot read mesh '" + full.string() + "': " + e.what());
+  }
+  // The reader checks this too; repeated here so that any mesh source is held to it.
+  const MeshQuality q = mesh_quality(m);
+  if (q.bad_elements > 0)
+    fail(fn, fkey,
+         "mesh '" + file + "' has " + std::to_string(q.bad_elements) +
+             " inverted or degenerate element(s), the first is element " +
+             std::to_string(q.first_bad_element + 1) + " (1-based, in file order)");
+  return m;
+}
+
+void Reader::read_bodies(const toml::table& root, ModelSpec& spec, toml::array& out,
+                         std::set<std::string>& names) const {
+  const auto list = entries(root, "bodies");
+  if (list.empty())
+    fail(root.get("bodies") ? root.get("bodies") : &root, "bodies",
+         "the scene has no bodies: add at least one [[bodies]] entry");
+  for (const auto& [tp, p] : list) {
+    const toml::table& t = *tp;
+    check_keys(t, p,
+               {"name", "material", "mesh", "position", "rotation", "velocity", "angular_velocity",
+                "fixed"});
+    BodySpec b;
+    b.name = entry_name(t, p, names, "body");
+    const std::string mat = string(t, "material", p, &t);
+    std::vector<std::string> mat_names;
+    for (std::size_t i = 0; i < spec.materials.size(); ++i) {
+      mat_names.push_back(spec.materials[i].name);
+      if (spec.materials[i].name == mat) b.material = static_cast<int>(i);
+    }
+    if (b.material < 0)
+      fail(t.get("material"), dotted(p, "material"),
+           "unknown material '" + mat + "'" + did_you_mean(mat, mat_names) +
+               (mat_names.empty() ? "; the scene defines no [[materials]]"
+                                  : "; materials: " + join(mat_names)));
+    const Vec3 position = opt_vec3(t, "position", p).value_or(Vec3::Zero());
+    const Vec3 rotation = opt_vec3(t, "rotation", p).value_or(Vec3::Zero());
+    b.velocity = opt_vec3(t, "velocity", p).value_or(Vec3::Zero());
+    b.angular_velocity = opt_vec3(t, "angular_velocity", p).value_or(Vec3::Zero());
+    b.fixed = boolean(t, "fixed", p, false);
+
+    const toml::node* mn = t.get("mesh");
+    if (!mn) fail(&t, dotted(p, "mesh"), "required value is missing");
+    toml::table mesh_out;
+    b.mesh = read_mesh(require_table(mn, dotted(p, "mesh")), p, mesh_out);
+    if (b.mesh.elements.empty() || b.mesh.nodes.empty())
+      fail(mn, dotted(p, "mesh"), "the mesh has no elements");
+    place_mesh(b.mesh, rotation, position);
+
+    toml::table o;
+    o.insert_or_assign("name", b.name);
+    o.insert_or_assign("material", mat);
+    o.insert_or_assign("mesh", std::move(mesh_out));
+    o.insert_or_assign("position", toml::array{position.x(), position.y(), position.z()});
+    o.insert_or_assign("rotation", toml::array{rotation.x(), rotation.y(), rotation.z()});
+    o.insert_or_assign("velocity", toml::array{b.velocity.x(), b.velocity.y(), b.velocity.z()});
+    o.insert_or_assign(
+        "angular_velocity",
+        toml::array{b.angular_velocity.x(), b.angular_velocity.y(), b.angular_velocity.z()});
+    o.insert_or_assign("fixed", b.fixed);
+    out.push_back(std::move(o));
+    spec.bodies.push_back(std::move(b));
+  }
+}
+
+void Reader::read_walls(const toml::table& root, ModelSpec& spec, toml::array& out,
+                        std::set<std::string>& names) const {
+  int index = 0;
+  for (const auto& [tp, p] : entries(root, "walls")) {
+    const toml::table& t = *tp;
+    ++index;
+    check_keys(t, p, {"name", "point", "normal", "velocity", "friction", "penalty_factor"});
+    WallSpec w;
+    w.name = entry_name(t, p, names, "wall", "wall" + std::to_string(index));
+    w.point = opt_vec3(t, "point", p).value_or(Vec3::Zero());
+    if (auto n = opt_vec3(t, "normal", p)) {
+      if (!(n->norm() > 0.0))
+        fail(t.get("normal"), dotted(p, "normal"), "must not be the zero vector");
+      w.normal = n->normalized();
+    }
+    w.velocity = opt_vec3(t, "velocity", p).value_or(Vec3::Zero());
+    w.friction = number(t, "friction", p, 0.0, &t);
+    if (w.friction < 0.0)
+      fail(t.get("friction"), dotted(p, "friction"),
+           "must not be negative, got " + format_number(w.friction));
+    w.penalty_factor = positive(t, "penalty_factor", p, 0.0, &t);
+    toml::table o;
+    o.insert_or_assign("name", w.name);
+    o.insert_or_assign("point", toml::array{w.point.x(), w.point.y(), w.point.z()});
+    o.insert_or_assign("normal", toml::array{w.normal.x(), w.normal.y(), w.normal.z()});
+    o.insert_or_assign("velocity", toml::array{w.velocity.x(), w.velocity.y(), w.velocity.z()});
+    o.insert_or_assign("friction", w.friction);
+    if (w.penalty_factor > 0.0) o.insert_or_assign("penalty_factor", w.penalty_factor);
+    out.push_back(std::move(o));
+    spec.walls.push_back(w);
+  }
+}
+
+RegionSpec Reader::read_region(const toml::table& c, const std::string& cp,
+                               toml::table& out) const {
+  RegionSpec r;
+  const std::string p = dotted(cp, "region");
+  const toml::node* n = c.get("region");
+  if (!n || (n->is_string() && n->as_string()->get() == "all")) {
+    r.kind = RegionSpec::Kind::All;
+    out.insert_or_assign("region", "all");
+    return r;
+  }
+  if (n->is_string())
+    fail(n, p,
+         "unknown region '" + n->as_string()->get() +
+             "': use \"all\", { box_min = [...], box_max = [...] } or { plane_point = [...], "
+             "plane_normal = [...] }");
+  if (!n->is_table())
+    fail(n, p,
+         "expected \"all\" or a table (box_min/box_max or plane_point/plane_normal), got " +
+             type_name(*n));
+  const toml::table& t = *n->as_table();
+  const bool box = t.contains("box_min") || t.contains("box_max");
+  const bool plane = t.contains("plane_point") || t.contains("plane_normal");
+  if (box && plane) fail(n, p, "mixes a box (box_min/box_max) and a plane (plane_point/...)");
+  if (!box && !plane) {
+    check_keys(t, p, {"box_min", "box_max", "plane_point", "plane_normal", "tolerance"});
+    fail(n, p, "needs box_min and box_max, or plane_point and plane_normal");
+  }
+  toml::table o;
+  if (box) {
+    check_keys(t, p, {"box_min", "box_max"}, "for a box region");
+    auto lo = opt_vec3(t, "box_min", p), hi = opt_vec3(t, "box_max", p);
+    if (!lo) fail(n, dotted(p, "box_min"), "required value is missing (box_max is given)");
+    if (!hi) fail(n, dotted(p, "box_max"), "required value is missing (box_min is given)");
+    for (int i = 0; i < 3; ++i)
+      if ((*lo)[i] > (*hi)[i])
+        fail(t.get("box_max"), dotted(p, "box_max"),
+             std::string("is below box_min in ") + "xyz"[i]);
+    r.kind = RegionSpec::Kind::Box;
+    r.box_min = *lo;
+    r.box_max = *hi;
+    o.insert_or_assign("box_min", toml::array{lo->x(), lo->y(), lo->z()});
+    o.insert_or_assign("box_max", toml::array{hi->x(), hi->y(), hi->z()});
+  } else {
+    check_keys(t, p, {"plane_point", "plane_normal", "tolerance"}, "for a plane region");
+    auto pt = opt_vec3(t, "plane_point", p), nr = opt_vec3(t, "plane_normal", p);
+    if (!pt) fail(n, dotted(p, "plane_point"), "required value is missing");
+    if (!nr) fail(n, dotted(p, "plane_normal"), "required value is missing");
+    if (!(nr->norm() > 0.0))
+      fail(t.get("plane_normal"), dotted(p, "plane_normal"), "must not be the zero vector");
+    r.kind = RegionSpec::Kind::Plane;
+    r.plane_point = *pt;
+    r.plane_normal = nr->normalized();
+    r.tolerance = positive(t, "tolerance", p, 0.0, n);
+    o.insert_or_assign("plane_point", toml::array{pt->x(), pt->y(), pt->z()});
+    o.insert_or_assign("plane_normal",
+                       toml::array{r.plane_normal.x(), r.plane_normal.y(), r.plane_normal.z()});
+    if (r.tolerance > 0.0) o.insert_or_assign("tolerance", r.tolerance);
+  }
+  out.insert_or_assign("region", std::move(o));
+  return r;
+}
+
+void Reader::read_constraints(const toml::table& root, ModelSpec& spec, toml::array& out) const {
+  std::vector<std::string> body_names;
+  for (const auto& b : spec.bodies) body_names.push_back(b.name);
+  std::set<std::string> names;
+  int index = 0;
+  for (const auto& [tp, p] : entries(root, "constraints")) {
+    const toml::table& t = *tp;
+    ++index;
+    check_keys(t, p, {"name", "body", "region", "fix", "velocity"});
+    if (t.contains("name"))
+      entry_name(t, p, names, "constraint", "constraint" + std::to_string(index));
+    ConstraintSpec c;
+    const std::string body = string(t, "body", p, &t);
+    for (std::size_t i = 0; i < spec.bodies.size(); ++i)
+      if (spec.bodies[i].name == body) c.body = static_cast<int>(i);
+    if (c.body < 0)
+      fail(t.get("body"), dotted(p, "body"),
+           "unknown body '" + body + "'" + did_you_mean(body, body_names) +
+               "; bodies: " + join(body_names));
+    toml::table o;
+    if (t.contains("name")) o.insert_or_assign("name", t.get("name")->as_string()->get());
+    o.insert_or_assign("body", body);
+    c.region = read_region(t, p, o);
+    bool any_fix = false;
+    if (const toml::node* f = t.get("fix")) {
+      const std::string fk = dotted(p, "fix");
+      const toml::array* a = f->as_array();
+      if (!a) fail(f, fk, "expected an array of components, e.g. [\"x\", \"z\"]");
+      toml::array fo;
+      for (const auto& e : *a) {
+        const std::string comp = e.is_string() ? e.as_string()->get() : std::string();
+        const int axis = comp == "x" ? 0 : comp == "y" ? 1 : comp == "z" ? 2 : -1;
+        if (axis < 0)
+          fail(&e, fk,
+               (e.is_string() ? "unknown component '" + comp + "'"
+                              : "expected a component name, got " + type_name(e)) +
+                   ": use any of \"x\", \"y\", \"z\"");
+        if (!c.fix[axis]) fo.push_back(comp);
+        c.fix[axis] = true;
+        any_fix = true;
+      }
+      o.insert_or_assign("fix", std::move(fo));
+    }
+    c.velocity = opt_vec3(t, "velocity", p);
+    if (!any_fix && !c.velocity)
+      fail(t.contains("fix") ? t.get("fix") : &t, p,
+           "does nothing: give 'fix' (a non-empty list of \"x\", \"y\", \"z\") or 'velocity'");
+    if (any_fix && c.velocity)
+      fail(t.get("velocity"), dotted(p, "velocity"),
+           "give either 'fix' or 'velocity', not both (velocity prescribes all three "
+           "components; use velocity = [0, 0, v] to hold x and y)");
+    if (c.velocity)
+      o.insert_or_assign("velocity",
+                         toml::array{c.velocity->x(), c.velocity->y(), c.velocity->z()});
+    out.push_back(std::move(o));
+    spec.constraints.push_back(c);
+  }
+}
+
+void Reader::read_contact(const toml::table& root, ModelSpec& spec, toml::table& out) const {
+  ContactSettings& c = spec.contact;
+  if (const toml::node* n = root.get("contact")) {
+    const toml::table& t = require_table(n, "contact");
+    check_keys(t, "contact", {"penalty_factor", "friction"});
+    c.penalty_factor = positive(t, "penalty_factor", "contact", c.penalty_factor, &t);
+    c.friction = number(t, "friction", "contact", c.friction, &t);
+    if (c.friction < 0.0)
+      fail(t.get("friction"), "contact.friction",
+           "must not be negative, got " + format_number(c.friction));
+  }
+  out.insert_or_assign("penalty_factor", c.penalty_factor);
+  out.insert_or_assign("friction", c.friction);
+}
+
+ModelSpec Reader::read(const toml::table& root, const std::string& stem, toml::table& resolved) {
+  check_keys(root, "",
+             {"title", "simulation", "materials", "bodies", "walls", "constraints", "contact"});
+  ModelSpec spec;
+  spec.title = opt_string(root, "title", "").value_or(stem);
+  resolved.insert_or_assign("title", spec.title);
+
+  toml::table sim;
+  read_simulation(root, spec, sim);
+  toml::array materials, bodies, walls, constraints;
+  read_materials(root, spec, materials);
+  std::set<std::string> names;  // bodies and walls share one namespace (history.csv columns)
+  read_bodies(root, spec, bodies, names);
+  read_walls(root, spec, walls, names);
+  read_constraints(root, spec, constraints);
+  toml::table contact;
+  read_contact(root, spec, contact);
+
+  resolved.insert_or_assign("simulation", std::move(sim));
+  resolved.insert_or_assign("materials", std::move(materials));
+  resolved.insert_or_assign("bodies", std::move(bodies));
+  if (!walls.empty()) resolved.insert_or_assign("walls", std::move(walls));
+  if (!constraints.empty()) resolved.insert_or_assign("constraints", std::move(constraints));
+  resolved.insert_or_assign("contact", std::move(contact));
+  return spec;
+}
+
+}  // namespace
+
+SceneFile load_scene(const std::string& path, const std::vector<std::string>& overrides) {
+  SceneFile scene;
+  scene.path = path;
+  const fs::path p(path);
+  scene.stem = p.stem().string();
+  scene.directory = p.parent_path().empty() ? std::string(".") : p.parent_path().string();
+
+  std::error_code ec;
+  if (!fs::exists(p, ec)) throw InputError("scene file does not exist", path);
+  if (fs::is_directory(p, ec)) throw InputError("is a folder, not a scene file", path);
+  std::ifstream in(p, std::ios::binary);
+  if (!in) throw InputError("cannot read the scene file", path);
+  std::ostringstream text;
+  text << in.rdbuf();
+
+  toml::table root;
+  try {
+    root = toml::parse(text.str(), path);
+  } catch (const toml::parse_error& e) {
+    throw InputError("TOML syntax error: " + std::string(e.description()), path,
+                     static_cast<int>(e.source().begin.line),
+                     static_cast<int>(e.source().begin.column));
+  }
+
+  Reader reader(path, fs::path(scene.directory));
+  for (const auto& o : overrides) reader.apply_override(root, o);
+
+  toml::table resolved;
+  scene.model = reader.read(root, scene.stem, resolved);
+  std::ostringstream out;
+  out << resolved << "\n";
+  scene.resolved_toml = out.str();
+  return scene;
+}
+
+}  // namespace femdem

@@ -1,0 +1,32 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// Reads a scene file (TOML, see docs/SCENES.md), applies --set overrides, checks every value
+// and builds the meshes. Every problem is an InputError naming the file, line, column and the
+// dotted key (arrays of tables are named by their `name`: "bodies.ball.mesh.radius").
+#include <string>
+#include <vector>
+
+#include "engine/model_spec.hpp"
+
+namespace femdem {
+
+struct SceneFile {
+  std::string path;           // as given on the command line
+  std::string stem;           // file name without folder and extension: "taylor_bar"
+  std::string directory;      // folder the scene's relative paths are resolved against
+  std::string resolved_toml;  // the scene with overrides applied and every default filled in
+  ModelSpec model;            // checked; meshes generated or read, rotated and placed
+};
+
+// overrides: "KEY=VALUE" strings (the command line's --set). KEY is dotted, with entries of
+// arrays of tables addressed by their name ("bodies.ball.velocity"); VALUE is read as a TOML
+// value, or as a bare string when it is not one ("mesh.file=part.msh").
+// Throws InputError.
+SceneFile load_scene(const std::string& path, const std::vector<std::string>& overrides = {});
+
+// Mesh placement used by the reader: p' = Rz(rz) Ry(ry) Rx(rx) p + position, i.e. the mesh is
+// turned about the fixed x axis first, then y, then z (angles in degrees, right-handed), about
+// its own origin, and then translated.
+void place_mesh(Tet10Mesh& mesh, const Vec3& rotation_degrees, const Vec3& position);
+
+}  // namespace femdem
