@@ -239,6 +239,30 @@ double Simulation::balance_error() const {
   return (energies().balance() - initial_balance_) / scale;
 }
 
+BodyState Simulation::body_motion(int bi) const {
+  const Model& m = model_;
+  const Body& b = m.bodies[bi];
+  BodyState s;
+  s.mass = b.mass;
+  double msum = 0.0;
+  for (std::int32_t n = b.first_node; n < b.first_node + b.node_count; ++n) {
+    const double mn = m.mass[n];
+    const double* x = m.x.data() + 3 * static_cast<std::size_t>(n);
+    const double* v = m.v.data() + 3 * static_cast<std::size_t>(n);
+    msum += mn;
+    for (int k = 0; k < 3; ++k) {
+      s.com[k] += mn * x[k];
+      s.vcom[k] += mn * v[k];
+    }
+    s.kinetic_energy += 0.5 * mn * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  }
+  for (std::int32_t n : b.surface_nodes)
+    s.contact_force += Vec3(m.f_wall[3 * n], m.f_wall[3 * n + 1], m.f_wall[3 * n + 2]);
+  s.com /= msum;
+  s.vcom /= msum;
+  return s;
+}
+
 BodyState Simulation::body_state(int bi) const {
   const Model& m = model_;
   const Body& b = m.bodies[bi];

@@ -52,6 +52,8 @@ class Simulation {
   // (energies().balance() - its initial value) / max(initial total, largest energy seen)
   double balance_error() const;
   BodyState body_state(int body) const;
+  // The cheap part of body_state (no volume, no bounding box), for per-step monitoring.
+  BodyState body_motion(int body) const;
   Vec3 wall_position(int wall) const { return model_.walls[wall].point; }
   Vec3 wall_force(int wall) const { return model_.walls[wall].force; }
 

@@ -1,0 +1,300 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The run driver: model, time loop, outputs, progress, restitution, and what a user sees when a
+// run fails or is interrupted.
+#include "io/runner.hpp"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "engine/errors.hpp"
+#include "engine/simulation.hpp"
+#include "femdem_version.hpp"
+#include "io/history_writer.hpp"
+#include "io/results_writer.hpp"
+#include "io/summary_writer.hpp"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace femdem {
+namespace {
+
+std::atomic<int> g_stop_signal{0};
+extern "C" void on_stop_signal(int sig) { g_stop_signal = sig; }
+
+// Everything printed also goes to run.log.
+class RunLog {
+ public:
+  RunLog(const std::filesystem::path& path, bool quiet) : file_(path), quiet_(quiet) {
+    if (!file_) throw std::runtime_error("cannot create " + path.string());
+  }
+  void say(const std::string& line) {
+    if (!quiet_) std::printf("%s\n", line.c_str()), std::fflush(stdout);
+    file_ << line << '\n';
+    file_.flush();
+  }
+  void file_only(const std::string& text) {
+    file_ << text;
+    file_.flush();
+  }
+  // A message that must reach the user even with --quiet (errors).
+  void error(const std::string& line) {
+    file_ << line << '\n';
+    file_.flush();
+  }
+
+ private:
+  std::ofstream file_;
+  bool quiet_;
+};
+
+std::string format_duration(double s) {
+  char buf[64];
+  if (s < 120)
+    std::snprintf(buf, sizeof buf, "%.0f s", s);
+  else if (s < 7200)
+    std::snprintf(buf, sizeof buf, "%.0f min %02.0f s", std::floor(s / 60), std::fmod(s, 60));
+  else
+    std::snprintf(buf, sizeof buf, "%.0f h %02.0f min", std::floor(s / 3600), std::fmod(s / 60, 60));
+  return buf;
+}
+
+// Coefficient of restitution of one body (SCENE_FORMAT.md): the centre-of-mass speed after the
+// last contact over the speed before the first, and sqrt(KE_after / KE_before).
+struct RestitutionTracker {
+  bool touched = false, in_contact = false;
+  double speed_before = 0.0, ke_before = 0.0;
+  double speed_after = 0.0, ke_after = 0.0;
+  double last_speed = 0.0, last_ke = 0.0;
+  void update(const BodyState& s) {
+    const bool contact = s.contact_force.squaredNorm() > 0.0;
+    if (contact && !touched) {
+      touched = true;
+      speed_before = last_speed;
+      ke_before = last_ke;
+    }
+    if (!contact && in_contact) {
+      speed_after = s.vcom.norm();
+      ke_after = s.kinetic_energy;
+    }
+    in_contact = contact;
+    last_speed = s.vcom.norm();
+    last_ke = s.kinetic_energy;
+  }
+  std::optional<Restitution> result() const {
+    if (!touched || in_contact || speed_before <= 0.0 || ke_before <= 0.0) return std::nullopt;
+    return Restitution{speed_after / speed_before, std::sqrt(ke_after / ke_before)};
+  }
+};
+
+}  // namespace
+
+int run_scene(const SceneFile& scene, const RunOptions& options) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  ModelSpec spec = scene.model;
+  int threads = options.threads >= 0 ? options.threads : spec.simulation.threads;
+#ifdef _OPENMP
+  if (threads <= 0) threads = omp_get_num_procs();
+  omp_set_num_threads(threads);
+#else
+  threads = 1;
+#endif
+  SimulationSettings& set = spec.simulation;
+  if (set.output_interval <= 0.0) set.output_interval = set.end_time / 50.0;
+  if (set.history_interval <= 0.0) set.history_interval = set.output_interval / 20.0;
+
+  // Everything that can fail on bad input happens before the first file is written.
+  Model model = build_model(spec);
+  Simulation sim(std::move(model));
+  const Model& m = sim.model();
+
+  const std::filesystem::path out = options.out_dir;
+  std::filesystem::create_directories(out);
+  // A summary from an earlier run must not sit next to this run's partial outputs.
+  std::filesystem::remove(out / "summary.json");
+  RunLog log(out / "run.log", options.quiet);
+  {
+    std::ostringstream head;
+    const std::time_t now = std::time(nullptr);
+    char date[64];
+    std::strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S", std::localtime(&now));
+    head << "femdem " << FEMDEM_VERSION << " (" << FEMDEM_GIT_REVISION << "), " << date << "\n"
+         << "command: " << options.command_line << "\n"
+         << "scene: " << scene.path << "\n\n# resolved scene\n"
+         << scene.resolved_toml << "\n# end of resolved scene\n\n";
+    log.file_only(head.str());
+  }
+  log.say("femdem " + std::string(FEMDEM_VERSION) + ": " + (m.title.empty() ? scene.stem : m.title));
+  {
+    char buf[256];
+    std::snprintf(buf, sizeof buf, "%d bodies, %d nodes, %d TET10 elements, %d walls; %d thread%s",
+                  static_cast<int>(m.bodies.size()), m.node_count, m.element_count,
+                  static_cast<int>(m.walls.size()), threads, threads == 1 ? "" : "s");
+    log.say(buf);
+    std::snprintf(buf, sizeof buf, "stable time step %.4g s, step %.4g s; end time %.4g s (about %.0f steps)",
+                  sim.stable_dt(), sim.dt(), set.end_time, set.end_time / sim.dt());
+    log.say(buf);
+    if (set.time_step > 0.0 && set.time_step > sim.stable_dt())
+      log.say("warning: simulation.time_step exceeds the stable step estimate; the run may diverge");
+  }
+
+  // Outputs
+  std::vector<std::string> body_names, wall_names;
+  for (const auto& b : m.bodies) body_names.push_back(b.name);
+  for (const auto& w : m.walls) wall_names.push_back(w.name);
+  ResultsWriter results(out, ResultsMesh{m.X, m.conn, m.node_body, m.element_body, body_names});
+  HistoryWriter history(out / "history.csv", standard_history_columns(body_names, wall_names));
+  std::vector<double> disp(m.X.size()), s6, vm, pr, ep, row;
+  auto write_frame = [&]() {
+    for (std::size_t i = 0; i < disp.size(); ++i) disp[i] = m.x[i] - m.X[i];
+    sim.element_stress(s6, vm, pr, ep);
+    results.write_frame(sim.time(), FrameFields{disp, m.v, s6, vm, pr, ep});
+  };
+  std::vector<RestitutionTracker> restitution(m.bodies.size());
+  std::vector<double> max_eqps(m.bodies.size(), 0.0);
+  auto write_history = [&]() {
+    const Energies e = sim.energies();
+    row.assign({sim.time(), sim.dt(), e.kinetic, e.internal, e.plastic_dissipation, e.contact,
+                e.external_work, e.balance(), sim.balance_error()});
+    for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+      const BodyState s = sim.body_motion(static_cast<int>(b));
+      row.insert(row.end(), {s.com.x(), s.com.y(), s.com.z(), s.vcom.x(), s.vcom.y(), s.vcom.z(),
+                             s.kinetic_energy, s.contact_force.x(), s.contact_force.y(),
+                             s.contact_force.z()});
+    }
+    for (std::size_t w = 0; w < m.walls.size(); ++w) {
+      const Vec3 f = sim.wall_force(static_cast<int>(w)), p = sim.wall_position(static_cast<int>(w));
+      row.insert(row.end(), {f.x(), f.y(), f.z(), p.x(), p.y(), p.z()});
+    }
+    history.write_row(row);
+  };
+
+  RunSummary summary;
+  summary.scene = scene.path;
+  summary.threads = threads;
+  summary.nodes = m.node_count;
+  summary.elements = m.element_count;
+  auto finish_summary = [&](RunStatus status) {
+    summary.status = status;
+    summary.end_time = sim.time();
+    summary.steps = sim.steps();
+    summary.time_step = sim.dt();
+    summary.wall_time_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    const Energies e = sim.energies();
+    summary.energy = {e.kinetic, e.internal, e.plastic_dissipation, e.contact, e.external_work,
+                      sim.balance_error()};
+    summary.bodies.clear();
+    for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+      const BodyState s = sim.body_state(static_cast<int>(b));
+      BodySummary bs;
+      bs.name = m.bodies[b].name;
+      bs.mass = s.mass;
+      bs.volume = s.volume;
+      bs.com = {s.com.x(), s.com.y(), s.com.z()};
+      bs.vcom = {s.vcom.x(), s.vcom.y(), s.vcom.z()};
+      bs.kinetic_energy = s.kinetic_energy;
+      bs.bbox_min = {s.bbox_min.x(), s.bbox_min.y(), s.bbox_min.z()};
+      bs.bbox_max = {s.bbox_max.x(), s.bbox_max.y(), s.bbox_max.z()};
+      bs.max_equivalent_plastic_strain = max_eqps[b];
+      bs.coefficient_of_restitution = restitution[b].result();
+      summary.bodies.push_back(bs);
+    }
+    write_summary(out / "summary.json", summary);
+  };
+
+  g_stop_signal = 0;
+  auto old_int = std::signal(SIGINT, on_stop_signal);
+  auto old_term = std::signal(SIGTERM, on_stop_signal);
+  struct RestoreSignals {
+    void (*i)(int);
+    void (*t)(int);
+    ~RestoreSignals() { std::signal(SIGINT, i), std::signal(SIGTERM, t); }
+  } restore{old_int, old_term};
+
+  const bool tty = !options.quiet && isatty(STDOUT_FILENO);
+  auto last_report = std::chrono::steady_clock::now();
+  const auto loop_start = last_report;
+  std::int64_t steps_at_report = 0;
+  double next_frame = set.output_interval, next_history = set.history_interval;
+  const double end = set.end_time;
+  const double eps = 1e-9 * end;
+  try {
+    write_frame();
+    for (std::size_t b = 0; b < m.bodies.size(); ++b)
+      restitution[b].update(sim.body_motion(static_cast<int>(b)));
+    write_history();
+    while (sim.time() < end - eps) {
+      sim.step();
+      for (std::size_t b = 0; b < m.bodies.size(); ++b)
+        restitution[b].update(sim.body_motion(static_cast<int>(b)));
+      if (sim.time() >= next_history - eps || sim.time() >= end - eps) {
+        write_history();
+        while (next_history <= sim.time() + eps) next_history += set.history_interval;
+      }
+      if (sim.time() >= next_frame - eps || sim.time() >= end - eps) {
+        write_frame();
+        while (next_frame <= sim.time() + eps) next_frame += set.output_interval;
+      }
+      if (g_stop_signal != 0) break;
+      if ((sim.steps() & 15) == 0 && !options.quiet) {
+        const auto now = std::chrono::steady_clock::now();
+        const double since = std::chrono::duration<double>(now - last_report).count();
+        if (since >= (tty ? 0.5 : 30.0)) {
+          const double elapsed = std::chrono::duration<double>(now - loop_start).count();
+          const double rate = (sim.steps() - steps_at_report) / since;
+          const double eta = elapsed * (end - sim.time()) / std::max(sim.time(), 1e-300);
+          char buf[200];
+          std::snprintf(buf, sizeof buf, "t = %.4g / %.4g s (%3.0f%%)  %lld steps  %.0f steps/s  ETA %s",
+                        sim.time(), end, 100.0 * sim.time() / end,
+                        static_cast<long long>(sim.steps()), rate, format_duration(eta).c_str());
+          if (tty)
+            std::printf("\r%s   ", buf), std::fflush(stdout);
+          else
+            std::printf("%s\n", buf), std::fflush(stdout);
+          last_report = now;
+          steps_at_report = sim.steps();
+        }
+      }
+    }
+  } catch (const InstabilityError& e) {
+    if (tty) std::printf("\n");
+    history.close();
+    results.close(false);
+    finish_summary(RunStatus::unstable);
+    log.error(std::string("error: the simulation became unstable: ") + e.what());
+    throw;
+  }
+  if (tty) std::printf("\r%*s\r", 100, ""), std::fflush(stdout);
+  history.close();
+  if (g_stop_signal != 0) {
+    results.close(false);
+    finish_summary(RunStatus::interrupted);
+    log.say("interrupted by signal " + std::to_string(g_stop_signal.load()) + " at t = " +
+            std::to_string(sim.time()) + " s; the frames written so far are readable");
+    return 1;
+  }
+  results.close(true);
+  finish_summary(RunStatus::completed);
+  char buf[300];
+  std::snprintf(buf, sizeof buf,
+                "done: %lld steps in %s (%.3g element updates/s); energy balance error %.3g %%",
+                static_cast<long long>(sim.steps()), format_duration(summary.wall_time_s).c_str(),
+                static_cast<double>(sim.steps()) * m.element_count / summary.wall_time_s,
+                100.0 * sim.balance_error());
+  log.say(buf);
+  log.say("results in " + out.string() + ": results.xdmf (ParaView), history.csv, summary.json");
+  return 0;
+}
+
+}  // namespace femdem
