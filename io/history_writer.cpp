@@ -1,0 +1,144 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "io/history_writer.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+#include <system_error>
+
+namespace femdem {
+
+namespace {
+
+constexpr std::size_t kMaxBuffer = std::size_t{1} << 20;
+
+std::string csv_field(const std::string& name) {
+  if (name.find_first_of(",\"\r\n") == std::string::npos) return name;
+  std::string quoted = "\"";
+  for (char c : name) {
+    if (c == '"') quoted += '"';
+    quoted += c;
+  }
+  return quoted + "\"";
+}
+
+void append_double(std::string& out, double v) {
+  if (std::isnan(v)) {
+    out += "nan";
+    return;
+  }
+  char buf[32];
+  const auto res = std::to_chars(buf, buf + sizeof buf, v);  // shortest round-trip
+  out.append(buf, res.ptr);
+}
+
+}  // namespace
+
+HistoryWriter::HistoryWriter(const std::filesystem::path& path, std::vector<std::string> columns,
+                             double flush_interval_s)
+    : path_(path),
+      columns_(std::move(columns)),
+      flush_interval_(std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+          std::chrono::duration<double>(flush_interval_s > 0 ? flush_interval_s : 0.0))),
+      last_flush_(std::chrono::steady_clock::now()) {
+  if (columns_.empty()) throw std::invalid_argument("history.csv: no columns");
+  fd_ = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd_ < 0) {
+    throw std::runtime_error("cannot create '" + path_.string() + "': " + std::strerror(errno));
+  }
+  for (std::size_t i = 0; i < columns_.size(); ++i) {
+    if (i) buffer_ += ',';
+    buffer_ += csv_field(columns_[i]);
+  }
+  buffer_ += '\n';
+  flush();
+}
+
+HistoryWriter::~HistoryWriter() {
+  try {
+    close();
+  } catch (...) {
+  }
+}
+
+void HistoryWriter::write_row(std::span<const double> values) {
+  if (fd_ < 0) throw std::logic_error("history.csv: write_row after close");
+  if (values.size() != columns_.size()) {
+    throw std::invalid_argument("history.csv: row has " + std::to_string(values.size()) +
+                                " values for " + std::to_string(columns_.size()) + " columns");
+  }
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (i) buffer_ += ',';
+    append_double(buffer_, values[i]);
+  }
+  buffer_ += '\n';
+  ++rows_;
+  if (buffer_.size() >= kMaxBuffer ||
+      std::chrono::steady_clock::now() - last_flush_ >= flush_interval_) {
+    flush();
+  }
+}
+
+void HistoryWriter::flush() {
+  last_flush_ = std::chrono::steady_clock::now();
+  if (fd_ < 0 || buffer_.empty()) return;
+  // One write() for all complete lines; loop only for the (rare) short write.
+  const char* p = buffer_.data();
+  std::size_t left = buffer_.size();
+  while (left > 0) {
+    const ssize_t n = ::write(fd_, p, left);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      const int err = errno;
+      buffer_.erase(0, buffer_.size() - left);
+      throw std::runtime_error("cannot write '" + path_.string() + "': " + std::strerror(err));
+    }
+    p += n;
+    left -= static_cast<std::size_t>(n);
+  }
+  buffer_.clear();
+}
+
+void HistoryWriter::close() {
+  if (fd_ < 0) return;
+  flush();
+  const int fd = fd_;
+  fd_ = -1;
+  if (::close(fd) != 0) {
+    throw std::runtime_error("cannot close '" + path_.string() + "': " + std::strerror(errno));
+  }
+}
+
+std::vector<std::string> standard_history_columns(std::span<const std::string> bodies,
+                                                  std::span<const std::string> walls) {
+  std::vector<std::string> c = {"time",
+                                "dt",
+                                "kinetic_energy",
+                                "internal_energy",
+                                "plastic_dissipation",
+                                "contact_energy",
+                                "external_work",
+                                "total_energy",
+                                "energy_balance_error"};
+  for (const std::string& b : bodies) {
+    for (const char* s :
+         {".com_x", ".com_y", ".com_z", ".vcom_x", ".vcom_y", ".vcom_z", ".kinetic_energy",
+          ".contact_force_x", ".contact_force_y", ".contact_force_z"}) {
+      c.push_back(b + s);
+    }
+  }
+  for (const std::string& w : walls) {
+    for (const char* s :
+         {".force_x", ".force_y", ".force_z", ".position_x", ".position_y", ".position_z"}) {
+      c.push_back(w + s);
+    }
+  }
+  return c;
+}
+
+}  // namespace femdem

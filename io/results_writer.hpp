@@ -1,0 +1,100 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// results.h5 + results.xdmf: the mesh once, then one frame per call of write_frame().
+//
+// Layout of results.h5 (HDF5 1.10 format, written in SWMR mode):
+//   /                      attributes: complete (int32: 0 while running or if the run was killed
+//                          or closed with close(false), 1 after close(true)), format
+//                          ("femdem-results"), format_version (int32, 1)
+//   /mesh/coordinates      [nodes, 3]      float64, reference coordinates
+//   /mesh/connectivity     [elements, 10]  int32, TET10 in VTK / XDMF Tetrahedron_10 order
+//   /mesh/node_body        [nodes]         int32
+//   /mesh/element_body     [elements]      int32
+//   /mesh/body_names       [bodies]        fixed-length UTF-8 strings, index = body id
+//   /frames/time           [frames]        float64 (chunks of 1024)
+//   /frames/displacement   [frames, nodes, 3]     float64 (or float32, see Options)
+//   /frames/velocity       [frames, nodes, 3]
+//   /frames/stress         [frames, elements, 9]  Cauchy stress as a full row-major 3x3 tensor
+//                                                 (xx xy xz yx yy yz zx zy zz)
+//   /frames/von_mises      [frames, elements]
+//   /frames/pressure       [frames, elements]
+//   /frames/equivalent_plastic_strain [frames, elements]
+// Frame datasets are chunked [1, up to ~1 MiB of one frame, components] with an unlimited
+// first dimension, so one frame is a contiguous set of whole chunks.
+//
+// Crash consistency: the file is written in HDF5's single-writer/multiple-reader mode, whose
+// ordered metadata flushes keep the file valid at every moment. Each frame is written, flushed,
+// then /frames/time is extended and flushed: len(/frames/time) is the number of complete
+// frames. results.xdmf is then replaced atomically (temp + rename) and names only complete
+// frames. After a kill, open results.h5 with H5F_ACC_SWMR_READ (h5py: swmr=True), or clear the
+// writer's mark first with `h5clear -s results.h5` (HDF5 tools) for readers that do not use
+// SWMR, e.g. ParaView.
+//
+// results.xdmf: a Temporal Collection of Uniform grids; every grid uses the reference
+// coordinates as geometry and HyperSlab DataItems into the frame datasets. The deformed shape
+// is shown by ParaView's "Warp By Vector" filter on `displacement` (scale factor 1).
+// Stress is declared as a 9-component "Tensor" because XDMF readers disagree on the component
+// order of "Tensor6".
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <span>
+#include <string>
+
+#include "elements/tet10_mesh.hpp"
+
+namespace femdem {
+
+struct ResultsMesh {
+  std::span<const double> coordinates;         // 3 per node, reference
+  std::span<const Tet10> connectivity;         // per element
+  std::span<const std::int32_t> node_body;     // per node
+  std::span<const std::int32_t> element_body;  // per element
+  std::span<const std::string> body_names;     // per body
+};
+
+struct FrameFields {
+  std::span<const double> displacement;               // 3 per node
+  std::span<const double> velocity;                   // 3 per node
+  std::span<const double> stress;                     // 6 per element: xx yy zz xy yz xz
+  std::span<const double> von_mises;                  // 1 per element
+  std::span<const double> pressure;                   // 1 per element
+  std::span<const double> equivalent_plastic_strain;  // 1 per element
+};
+
+struct ResultsOptions {
+  bool single_precision = false;  // store frame fields as float32 (half the size)
+};
+
+class ResultsWriter {
+ public:
+  // Creates `folder` if needed, replaces results.xdmf (by one with no frames) and results.h5,
+  // and writes the mesh. Throws std::invalid_argument for inconsistent sizes and
+  // std::runtime_error for I/O errors (naming the file).
+  ResultsWriter(const std::filesystem::path& folder, const ResultsMesh& mesh,
+                ResultsOptions options = {});
+  // Closes as close(false) if still open; never throws.
+  ~ResultsWriter();
+  ResultsWriter(const ResultsWriter&) = delete;
+  ResultsWriter& operator=(const ResultsWriter&) = delete;
+
+  // Appends one frame (sizes checked against the mesh), flushes it to the file and rewrites
+  // results.xdmf. Throws std::invalid_argument / std::runtime_error; after a runtime_error the
+  // frames written before stay valid.
+  void write_frame(double time, const FrameFields& fields);
+
+  // Closes the file; `complete` sets the root attribute complete = 1 (a finished run).
+  // Idempotent; later write_frame calls throw std::logic_error.
+  void close(bool complete);
+
+  std::int64_t frame_count() const;
+  bool is_open() const;
+  std::filesystem::path h5_path() const;
+  std::filesystem::path xdmf_path() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace femdem

@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// summary.json: the run's scalar results (SCENE_FORMAT.md, "Outputs"), read by `sweep` and by
+// scripts. Written atomically: a half-written summary never exists.
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace femdem {
+
+enum class RunStatus { completed, unstable, interrupted };
+const char* to_string(RunStatus status);  // "completed", "unstable", "interrupted"
+
+struct EnergySummary {
+  double kinetic = 0.0;
+  double internal = 0.0;
+  double plastic_dissipation = 0.0;
+  double contact = 0.0;
+  double external_work = 0.0;
+  double balance_error = 0.0;
+};
+
+struct Restitution {
+  double com = 0.0;             // |v_com| after the last contact / before the first
+  double kinetic_energy = 0.0;  // sqrt(KE_after / KE_before)
+};
+
+struct BodySummary {
+  std::string name;
+  double mass = 0.0;
+  double volume = 0.0;
+  std::array<double, 3> com{}, vcom{};
+  double kinetic_energy = 0.0;
+  std::array<double, 3> bbox_min{}, bbox_max{};
+  double max_equivalent_plastic_strain = 0.0;
+  std::optional<Restitution> coefficient_of_restitution;  // null unless it touched and left
+};
+
+struct RunSummary {
+  std::string scene;  // scene file as given
+  RunStatus status = RunStatus::completed;
+  double end_time = 0.0;  // simulated time reached
+  std::int64_t steps = 0;
+  double time_step = 0.0;
+  double wall_time_s = 0.0;
+  int threads = 0;
+  std::int64_t nodes = 0;
+  std::int64_t elements = 0;
+  EnergySummary energy;
+  std::vector<BodySummary> bodies;      // written as an object keyed by name, in this order
+  std::map<std::string, double> extra;  // further named scalars, written under "extra"
+};
+
+// The JSON text (2-space indented, keys in the order of SCENE_FORMAT.md, doubles in shortest
+// round-trip form; non-finite numbers become null).
+std::string summary_to_json(const RunSummary& summary);
+
+// Writes summary_to_json(summary) to `path` atomically (temp file + fsync + rename).
+// Throws std::runtime_error.
+void write_summary(const std::filesystem::path& path, const RunSummary& summary);
+
+}  // namespace femdem
