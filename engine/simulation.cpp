@@ -155,9 +155,9 @@ void Simulation::set_time_step() {
   dt_ = m.settings.time_step > 0.0 ? m.settings.time_step : m.settings.time_step_safety * dt;
 }
 
-void Simulation::step() {
+void Simulation::step(double dt_limit) {
   Model& m = model_;
-  const double dt = dt_;
+  const double dt = std::min(dt_, dt_limit);
   const std::int32_t nn = m.node_count;
   const Vec3& g = m.settings.gravity;
 

@@ -2,6 +2,7 @@
 #pragma once
 // The explicit time loop: central differences in kick-drift-kick form (velocities at whole
 // steps, so kinetic energy and outputs are synchronous with positions), automatic stable step.
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -40,7 +41,8 @@ class Simulation {
 
   // One step. Throws InstabilityError (with body, element, time and advice) on det F <= 0 or
   // non-finite values.
-  void step();
+  // dt_limit caps this step (to land exactly on an end time).
+  void step(double dt_limit = HUGE_VAL);
 
   const Model& model() const { return model_; }
   double time() const { return time_; }

@@ -235,7 +235,10 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
       restitution[b].update(sim.body_motion(static_cast<int>(b)));
     write_history();
     while (sim.time() < end - eps) {
-      sim.step();
+      // land on end_time exactly rather than a fraction of a step past it
+      const double remaining = end - sim.time();
+      sim.step(remaining < 1.5 * sim.dt() ? (remaining > sim.dt() ? 0.5 * remaining : remaining)
+                                          : HUGE_VAL);
       for (std::size_t b = 0; b < m.bodies.size(); ++b)
         restitution[b].update(sim.body_motion(static_cast<int>(b)));
       if (sim.time() >= next_history - eps || sim.time() >= end - eps) {
