@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// gmsh MSH files (ASCII, format 4.1 and 2.x) <-> Tet10Mesh.
+//
+// Reading:
+//  - Only tetrahedra are kept: type 4 (TET4, promoted to TET10 by adding one node at the
+//    midpoint of every edge, shared between the elements around that edge) and type 11 (TET10,
+//    reordered from gmsh's node order, which swaps our 8 and 9). Points, lines, triangles,
+//    quadrangles and other volume types are ignored; other sections are skipped.
+//  - Node tags may be arbitrary (non-contiguous, unordered). Nodes not used by any tetrahedron
+//    are dropped; the others keep the file's order, and promoted mid-edge nodes follow them.
+//  - If every tetrahedron is negatively oriented, all are flipped (GmshReadInfo::flipped). If
+//    only some are, or an element is degenerate (|corner volume| <= 1e-10 of the mean) or its
+//    quadratic map folds (scaled Jacobian <= 0), InputError names the element's gmsh tag.
+//  - Every problem throws InputError with the file and the 1-based line (and column where it
+//    helps): binary files, unsupported versions (MSH 4.0, 3.x), truncated files, malformed or
+//    non-numeric data, dangling node references, no tetrahedra at all.
+// Writing: MSH 4.1 ASCII, one volume entity, TET10 elements (type 11), node tags 1..N in mesh
+// order, element tags 1..E, coordinates in shortest round-trip form, so write + read gives the
+// same mesh bit for bit.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "elements/tet10_mesh.hpp"
+
+namespace femdem {
+
+struct GmshReadInfo {
+  std::string version;                // as in the file, e.g. "4.1" or "2.2"
+  std::int64_t tet4 = 0;              // TET4 elements read (and promoted)
+  std::int64_t tet10 = 0;             // TET10 elements read
+  std::int64_t ignored_elements = 0;  // non-tetrahedral elements skipped
+  std::int64_t unused_nodes = 0;      // nodes dropped because no tetrahedron uses them
+  bool flipped = false;               // all tetrahedra were inverted and have been flipped
+  std::vector<std::string> notes;     // human-readable remarks about the above
+};
+
+Tet10Mesh read_gmsh(const std::string& path, GmshReadInfo* info = nullptr);
+
+// Throws std::runtime_error if the file cannot be written.
+void write_gmsh(const Tet10Mesh& mesh, const std::string& path);
+
+}  // namespace femdem
