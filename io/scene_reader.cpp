@@ -19,15 +19,6 @@
 #include "engine/errors.hpp"
 #include "io/gmsh_io.hpp"
 #include "io/mesh_generators.hpp"
-#if !__has_include("io/gmsh_io.cpp")
-// TEMPORARY until io/gmsh_io.cpp lands: a weak reference, so that the reader links without it.
-// It drops out once the file exists (a weak reference would not pull gmsh_io.o out of the
-// static library).
-namespace femdem {
-[[gnu::weak]] Tet10Mesh read_gmsh(const std::string& path, GmshReadInfo* info);
-}
-#define FEMDEM_SCENE_GMSH_IS_WEAK 1
-#endif
 
 namespace femdem {
 
@@ -691,9 +682,6 @@ Tet10Mesh Reader::read_mesh(const toml::table& mesh, const std::string& bp,
          "CAD import is not available yet in this version: mesh '" + file +
              "' into a second-order tetrahedral gmsh .msh file and use mesh = { file = ... }");
   }
-#ifdef FEMDEM_SCENE_GMSH_IS_WEAK
-  if (!&read_gmsh) fail(fn, fkey, "gmsh import is not built into this version");
-#endif
   Tet10Mesh m;
   try {
     m = read_gmsh(full.string());
