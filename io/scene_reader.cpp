@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -115,10 +116,9 @@ std::string type_name(const toml::node& n) {
 }
 
 std::string format_number(double v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);  // shortest round-trip form
+  return std::string(buf, r.ptr);
 }
 
 // A TOML basic string literal holding s.
@@ -417,8 +417,11 @@ std::string Reader::entry_name(const toml::table& t, const std::string& prefix,
            "'" + name + "': names may contain only letters, digits, '_' and '-'");
   if (!taken.insert(name).second)
     fail(n ? n : &t, dotted(prefix, "name"),
-         "duplicate name '" + name + "' (names of " + what + "s" +
-             (what == "material" ? "" : " and of the other bodies and walls") + " must be unique)");
+         "duplicate name '" + name + "' (" +
+             (what == "body" || what == "wall"
+                  ? std::string("bodies and walls share one set of names")
+                  : "names of " + what + "s must be unique") +
+             ")");
   return name;
 }
 
@@ -666,8 +669,7 @@ Tet10Mesh Reader::read_mesh(const toml::table& mesh, const std::string& bp,
   else
     fail(fn, fkey,
          "unsupported mesh file type '" + (ext.empty() ? std::string("(none)") : ext) +
-             "': use a gmsh volume mesh (.msh) or a CAD surface (" + join(kCadExtensions, " ") +
-             ")");
+             "': use a second-order tetrahedral gmsh volume mesh (.msh)");
   std::error_code ec;
   if (!fs::exists(full, ec))
     fail(fn, fkey,
