@@ -157,7 +157,7 @@ MeshQuality mesh_quality(const Tet10Mesh& mesh) {
   q.min_edge = inf;
   q.max_edge = 0.0;
   double sum_abs = 0.0;
-  std::vector<double> vols(mesh.elements.size());
+  std::vector<double> vols(mesh.elements.size()), sj(mesh.elements.size());
   for (std::size_t e = 0; e < mesh.elements.size(); ++e) {
     const auto& t = mesh.elements[e];
     const Vec3 &a = mesh.nodes[t[0]], &b = mesh.nodes[t[1]], &c = mesh.nodes[t[2]],
@@ -178,14 +178,13 @@ MeshQuality mesh_quality(const Tet10Mesh& mesh) {
       q.max_dihedral_deg = std::max(q.max_dihedral_deg, x);
     }
     q.max_aspect_ratio = std::max(q.max_aspect_ratio, tet_aspect_ratio(a, b, c, d));
-    q.min_scaled_jacobian = std::min(q.min_scaled_jacobian, tet10_min_scaled_jacobian(mesh, e));
+    sj[e] = tet10_min_scaled_jacobian(mesh, e);
+    q.min_scaled_jacobian = std::min(q.min_scaled_jacobian, sj[e]);
     q.total_volume += tet10_volume(mesh, e);
   }
   const double tiny = 1e-12 * sum_abs / static_cast<double>(mesh.elements.size());
   for (std::size_t e = 0; e < mesh.elements.size(); ++e) {
-    bool bad = !(vols[e] > tiny);
-    if (!bad) bad = !(tet10_min_scaled_jacobian(mesh, e) > 0.0);
-    if (bad) {
+    if (!(vols[e] > tiny) || !(sj[e] > 0.0)) {
       if (q.first_bad_element < 0) q.first_bad_element = static_cast<std::int64_t>(e);
       ++q.bad_elements;
     }
