@@ -328,3 +328,35 @@ TEST(GmshIo, MalformedV41) {
     expect_error(write_lines("trunc41.msh", l), 45, "unexpected end of file");
   }
 }
+
+TEST(GmshIo, MixedTet4AndTet10ShareMidEdgeNodes) {
+  auto l = tet4_v22();
+  l[4] = "11";
+  l.insert(l.begin() + 10, {"60 0.5 0 0", "61 0.5 0.5 0", "62 0 0.5 0", "63 0 0 0.5",
+                            "64 0 0.5 0.5", "65 0.5 0 0.5"});
+  // Element 2 becomes a TET10 in gmsh order (8: edge 2-3, 9: edge 1-3); element 3 stays TET4
+  // and shares the face 20 30 40 with it.
+  l[14 + 6] = "2 11 2 0 1 10 20 30 40 60 61 62 63 64 65";
+  GmshReadInfo info;
+  const Tet10Mesh m = read_gmsh(write_lines("mixed.msh", l), &info);
+  EXPECT_EQ(info.tet4, 1);
+  EXPECT_EQ(info.tet10, 1);
+  EXPECT_EQ(m.nodes.size(), 14u);  // 5 corners + 9 edges: the shared face's 3 are reused
+  expect_straight_midpoints(m);
+}
+
+TEST(GmshIo, V41ParametricNodesAndUnorderedTags) {
+  const std::vector<std::string> l = {
+      "$MeshFormat", "4.1 0 8", "$EndMeshFormat", "$Nodes",        "2 4 3 900",
+      "2 1 1 2",  // surface block with parametric (u, v)
+      "900",         "7",       "0 0 0 0.1 0.2",  "1 0 0 0.3 0.4",
+      "3 1 0 2",  // volume block
+      "3 5",         "0 1 0",   "0 0 1",          "$EndNodes",     "$Elements",
+      "1 1 1 1",     "3 1 4 1", "1 900 7 3 5",    "$EndElements"};
+  GmshReadInfo info;
+  const Tet10Mesh m = read_gmsh(write_lines("param41.msh", l), &info);
+  ASSERT_EQ(m.elements.size(), 1u);
+  EXPECT_EQ(m.nodes.size(), 10u);
+  EXPECT_NEAR(tet10_volume(m, 0), 1.0 / 6, 1e-15);
+  expect_straight_midpoints(m);
+}
