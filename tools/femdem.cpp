@@ -18,16 +18,6 @@
 #include "io/runner.hpp"
 #include "io/scene_reader.hpp"
 
-#if !__has_include("io/runner.cpp")
-// TEMPORARY until io/runner.cpp lands: a weak reference, so that `check` builds and runs without
-// it. Once runner.cpp exists this block drops out (a weak reference would not pull runner.o out
-// of the static library).
-namespace femdem {
-[[gnu::weak]] int run_scene(const SceneFile& scene, const RunOptions& options);
-}
-#define FEMDEM_RUNNER_IS_WEAK 1
-#endif
-
 namespace {
 
 constexpr int kExitOk = 0;
@@ -213,12 +203,6 @@ int main(int argc, char** argv) {
         if (i) options.command_line += ' ';
         options.command_line += argv[i];
       }
-#ifdef FEMDEM_RUNNER_IS_WEAK
-      if (!&femdem::run_scene) {
-        std::fputs("error: 'run' is not available in this build (no runner)\n", stderr);
-        return kExitFailure;
-      }
-#endif
       return femdem::run_scene(scene, options);
     }
   } catch (const femdem::InputError& e) {
