@@ -79,10 +79,8 @@ void Simulation::compute_forces() {
       const Body& b = m.bodies[m.element_body[e]];
       std::ostringstream msg;
       msg << "element " << (e - b.first_element) << " of body '" << b.name
-          << "' inverted (det F <= 0) at t = " << time_ << " s, step " << steps_
-          << ". The time step may be too large for this deformation or the mesh too coarse or "
-             "distorted: lower simulation.time_step_safety (now "
-          << m.settings.time_step_safety << "), refine the mesh, or check the loading.";
+          << "' inverted (det F <= 0) at t = " << time_ << " s, step " << steps_ << ". "
+          << advice();
       throw InstabilityError(msg.str());
     }
     internal += elem_energy_[e];
@@ -129,6 +127,20 @@ void Simulation::compute_forces() {
       }
     }
   }
+}
+
+std::string Simulation::advice() const {
+  std::ostringstream a;
+  const SimulationSettings& s = model_.settings;
+  if (s.time_step > 0.0 && s.time_step > 0.9 * stable_dt_) {
+    a << "simulation.time_step = " << s.time_step << " s is above the stable step ("
+      << stable_dt_ << " s at the last check): lower it, or remove it to let femdem choose.";
+  } else {
+    a << "The step may be too large for this deformation, or the mesh too coarse or distorted: "
+         "lower simulation.time_step_safety (now "
+      << s.time_step_safety << "), refine the mesh, or check the loading and penalty factors.";
+  }
+  return a.str();
 }
 
 void Simulation::set_time_step() {
@@ -209,8 +221,7 @@ void Simulation::step(double dt_limit) {
   if (!finite) {
     std::ostringstream msg;
     msg << "non-finite velocity or position at t = " << time_ << " s, step " << steps_
-        << ": the run diverged. Lower simulation.time_step_safety (now "
-        << m.settings.time_step_safety << ") or the wall/contact penalty factor.";
+        << ": the run diverged. " << advice();
     throw InstabilityError(msg.str());
   }
   external_work_ += gravity_work + 0.5 * dt * (power0 + boundary_power());

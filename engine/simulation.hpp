@@ -4,6 +4,7 @@
 // steps, so kinetic energy and outputs are synchronous with positions), automatic stable step.
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "engine/model.hpp"
@@ -67,6 +68,7 @@ class Simulation {
  private:
   void compute_forces();  // internal + wall contact at current x; updates energies and dt
   void set_time_step();
+  std::string advice() const;  // what to change when the run diverges
 
   Model model_;
   double time_ = 0.0;
