@@ -117,6 +117,8 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
   Model model = build_model(spec);
   Simulation sim(std::move(model));
   const Model& m = sim.model();
+  const double setup_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
 
   const std::filesystem::path out = options.out_dir;
   std::filesystem::create_directories(out);
@@ -179,6 +181,7 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
     history.write_row(row);
   };
 
+  auto loop_start = std::chrono::steady_clock::now();
   RunSummary summary;
   summary.scene = scene.path;
   summary.threads = threads;
@@ -192,6 +195,10 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
     summary.wall_time_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     const Energies e = sim.energies();
+    summary.extra["setup_time_s"] = setup_time;
+    summary.extra["loop_time_s"] =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
+    summary.extra["stable_time_step"] = sim.stable_dt();
     summary.energy = {e.kinetic, e.internal, e.plastic_dissipation, e.contact, e.external_work,
                       sim.balance_error()};
     summary.bodies.clear();
@@ -224,7 +231,7 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
 
   const bool tty = !options.quiet && isatty(STDOUT_FILENO);
   auto last_report = std::chrono::steady_clock::now();
-  const auto loop_start = last_report;
+  loop_start = last_report;
   std::int64_t steps_at_report = 0;
   double next_frame = set.output_interval, next_history = set.history_interval;
   const double end = set.end_time;
