@@ -1,73 +1,162 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Internal forces of one TET10 element at finite strain (total Lagrangian form):
-//   F = sum_a x_a (x) dN_a/dX,   P = tau F^-T,   f_a = sum_g w_g P dN_a/dX
-// with tau the Kirchhoff stress of the material. Writes Cauchy stress sigma = tau / J per Gauss
-// point. No allocation; called once per element per step from the parallel element loop.
+//   F_g = sum_a x_a (x) dN_a/dX,   f_a = sum_g w_g P_g dN_a/dX
+// with the Kirchhoff stress tau from the material's finite-strain update (materials/), and
+// optionally F-bar against volumetric locking. Writes Cauchy stress per Gauss point. No
+// allocation; called once per element per step from the parallel element loop.
+//
+// F-bar (de Souza Neto et al. 1996; the thesis names it without a formula): the material sees
+// F_bar_g = (J0 / J_g)^(1/3) F_g, with J0 the element's volume ratio, either
+//   VolumeAverage: J0 = v / V = sum_g w_g J_g / sum_g w_g (mean dilatation), or
+//   Centroid:      J0 = det F at the element centre (the mean of the F_g, exact for straight
+//                  edges since the 4-point rule is symmetric about the centroid).
+// The force is the exact derivative of sum_g w_g W(F_bar_g): differentiating F_bar gives
+//   delta W_g = dev(tau_g) F_g^-T : delta F_g + (tr tau_g / 3) delta J0 / J0,
+// so the deviatoric stress acts through each point's own F and the mean pressure through J0.
+// This keeps the energy balance exact (unlike the common sigma(F_bar) : grad N form), which the
+// energy tests rely on.
 #include <cmath>
 
 #include "elements/tet10_shape.hpp"
-#include "materials/hencky.hpp"
+#include "materials/finite_strain_update.hpp"
 
 namespace femdem {
 
+enum class FbarMode : unsigned char { Off, VolumeAverage, Centroid };
+
 struct ElementResult {
-  double energy = 0.0;  // stored energy of the element
-  double min_J = 0.0;   // smallest det F over the Gauss points
+  double energy = 0.0;       // stored elastic energy of the element
+  double dissipation = 0.0;  // plastic work increment of this step
+  double min_J = 0.0;        // smallest det F over the Gauss points
+  double max_eps_p = 0.0;    // largest equivalent plastic strain over the Gauss points
 };
 
-// xe: 30 current coordinates (node-major); dNdX: 4 x 10 x 3; w: 4 Gauss weights x det J0.
+namespace detail {
+
+inline double det3(const double A[3][3]) {
+  return A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) -
+         A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
+         A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
+}
+
+// cof = det(A) A^-T
+inline void cofactor3(const double F[3][3], double cof[3][3]) {
+  cof[0][0] = F[1][1] * F[2][2] - F[1][2] * F[2][1];
+  cof[0][1] = F[1][2] * F[2][0] - F[1][0] * F[2][2];
+  cof[0][2] = F[1][0] * F[2][1] - F[1][1] * F[2][0];
+  cof[1][0] = F[0][2] * F[2][1] - F[0][1] * F[2][2];
+  cof[1][1] = F[0][0] * F[2][2] - F[0][2] * F[2][0];
+  cof[1][2] = F[0][1] * F[2][0] - F[0][0] * F[2][1];
+  cof[2][0] = F[0][1] * F[1][2] - F[0][2] * F[1][1];
+  cof[2][1] = F[0][2] * F[1][0] - F[0][0] * F[1][2];
+  cof[2][2] = F[0][0] * F[1][1] - F[0][1] * F[1][0];
+}
+
+// f_a += scale * (S cof) dN_a, S symmetric (6), for the 10 nodes
+inline void add_force(const double S6[6], const double cof[3][3], double scale, const double* d,
+                      double* fe) {
+  const double S[3][3] = {{S6[0], S6[3], S6[5]}, {S6[3], S6[1], S6[4]}, {S6[5], S6[4], S6[2]}};
+  double P[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      P[i][j] = scale * (S[i][0] * cof[0][j] + S[i][1] * cof[1][j] + S[i][2] * cof[2][j]);
+  for (int a = 0; a < 10; ++a)
+    for (int i = 0; i < 3; ++i)
+      fe[3 * a + i] += P[i][0] * d[3 * a] + P[i][1] * d[3 * a + 1] + P[i][2] * d[3 * a + 2];
+}
+
+}  // namespace detail
+
+// xe: 30 current coordinates (node-major); dNdX: 4 x 10 x 3; w: 4 Gauss weights x det J0;
+// state: 4 Gauss-point states (updated); dt: this step (rate-dependent models).
 // fe: 30 internal forces out; sigma: 4 x 6 Cauchy stress out.
-inline ElementResult tet10_elastic_forces(const double* xe, const double* dNdX, const double* w,
-                                          double lambda, double G, double* fe, double* sigma) {
+template <class Material>
+inline ElementResult tet10_internal_forces(const double* xe, const double* dNdX, const double* w,
+                                           const Material& material, FbarMode fbar,
+                                           GaussPointState* state, double dt, double* fe,
+                                           double* sigma) {
   ElementResult res;
   res.min_J = HUGE_VAL;
   for (int i = 0; i < 30; ++i) fe[i] = 0.0;
-  for (int g = 0; g < tet10::kGauss; ++g) {
+  double F[4][3][3] = {};
+  double J[4];
+  for (int g = 0; g < 4; ++g) {
     const double* d = dNdX + g * 30;
-    double F[3][3] = {};
     for (int a = 0; a < 10; ++a)
       for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) F[i][j] += xe[3 * a + i] * d[3 * a + j];
-    // cofactor matrix: cof = J F^-T
-    double cof[3][3];
-    cof[0][0] = F[1][1] * F[2][2] - F[1][2] * F[2][1];
-    cof[0][1] = F[1][2] * F[2][0] - F[1][0] * F[2][2];
-    cof[0][2] = F[1][0] * F[2][1] - F[1][1] * F[2][0];
-    cof[1][0] = F[0][2] * F[2][1] - F[0][1] * F[2][2];
-    cof[1][1] = F[0][0] * F[2][2] - F[0][2] * F[2][0];
-    cof[1][2] = F[0][1] * F[2][0] - F[0][0] * F[2][1];
-    cof[2][0] = F[0][1] * F[1][2] - F[0][2] * F[1][1];
-    cof[2][1] = F[0][2] * F[1][0] - F[0][0] * F[1][2];
-    cof[2][2] = F[0][0] * F[1][1] - F[0][1] * F[1][0];
-    const double J = F[0][0] * cof[0][0] + F[0][1] * cof[0][1] + F[0][2] * cof[0][2];
-    res.min_J = std::fmin(res.min_J, J);
-    if (!(J > 0.0)) continue;  // the caller stops the run; avoid log of a negative number
-    double b[6];
-    b[0] = F[0][0] * F[0][0] + F[0][1] * F[0][1] + F[0][2] * F[0][2];
-    b[1] = F[1][0] * F[1][0] + F[1][1] * F[1][1] + F[1][2] * F[1][2];
-    b[2] = F[2][0] * F[2][0] + F[2][1] * F[2][1] + F[2][2] * F[2][2];
-    b[3] = F[0][0] * F[1][0] + F[0][1] * F[1][1] + F[0][2] * F[1][2];
-    b[4] = F[1][0] * F[2][0] + F[1][1] * F[2][1] + F[1][2] * F[2][2];
-    b[5] = F[0][0] * F[2][0] + F[0][1] * F[2][1] + F[0][2] * F[2][2];
-    const HenckyResult h = hencky_stress(b, lambda, G);
-    res.energy += w[g] * h.energy;
-    const double invJ = 1.0 / J;
-    double* s = sigma + 6 * g;
-    for (int k = 0; k < 6; ++k) s[k] = h.tau[k] * invJ;
-    // P = tau F^-T = tau cof / J
-    const double tau[3][3] = {{h.tau[0], h.tau[3], h.tau[5]},
-                              {h.tau[3], h.tau[1], h.tau[4]},
-                              {h.tau[5], h.tau[4], h.tau[2]}};
-    double P[3][3];
+        for (int j = 0; j < 3; ++j) F[g][i][j] += xe[3 * a + i] * d[3 * a + j];
+    J[g] = detail::det3(F[g]);
+    res.min_J = std::fmin(res.min_J, J[g]);
+  }
+  if (!(res.min_J > 0.0)) return res;  // the caller stops the run
+
+  const double vol0 = w[0] + w[1] + w[2] + w[3];
+  double J0 = 0.0;
+  double Fc[3][3] = {};
+  if (fbar == FbarMode::VolumeAverage) {
+    for (int g = 0; g < 4; ++g) J0 += w[g] * J[g];
+    J0 /= vol0;
+  } else if (fbar == FbarMode::Centroid) {
+    for (int g = 0; g < 4; ++g)
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) Fc[i][j] += 0.25 * F[g][i][j];
+    J0 = detail::det3(Fc);
+    if (!(J0 > 0.0)) {
+      res.min_J = std::fmin(res.min_J, J0);
+      return res;
+    }
+  }
+
+  double pressure_work = 0.0;  // sum_g w_g tr(tau_g) / 3
+  for (int g = 0; g < 4; ++g) {
+    double Fm[3][3];
+    double scale = 1.0;
+    if (fbar != FbarMode::Off) scale = std::cbrt(J0 / J[g]);
     for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j)
-        P[i][j] = (tau[i][0] * cof[0][j] + tau[i][1] * cof[1][j] + tau[i][2] * cof[2][j]) * invJ;
-    for (int a = 0; a < 10; ++a)
-      for (int i = 0; i < 3; ++i)
-        fe[3 * a + i] += w[g] * (P[i][0] * d[3 * a] + P[i][1] * d[3 * a + 1] + P[i][2] * d[3 * a + 2]);
+      for (int j = 0; j < 3; ++j) Fm[i][j] = scale * F[g][i][j];
+    const FiniteStrainResult r = finite_strain_update(Fm, state[g], material, dt);
+    res.energy += w[g] * r.energy;
+    res.dissipation += w[g] * r.dissipation;
+    res.max_eps_p = std::fmax(res.max_eps_p, state[g].eps_p);
+    const double Jm = (fbar != FbarMode::Off) ? J0 : J[g];
+    for (int k = 0; k < 6; ++k) sigma[6 * g + k] = r.tau[k] / Jm;
+    double cof[3][3];
+    detail::cofactor3(F[g], cof);
+    if (fbar == FbarMode::Off) {
+      detail::add_force(r.tau, cof, w[g] / J[g], dNdX + g * 30, fe);  // P = tau F^-T
+    } else {
+      const double p = (r.tau[0] + r.tau[1] + r.tau[2]) / 3.0;
+      const double dev[6] = {r.tau[0] - p, r.tau[1] - p, r.tau[2] - p, r.tau[3], r.tau[4], r.tau[5]};
+      detail::add_force(dev, cof, w[g] / J[g], dNdX + g * 30, fe);
+      pressure_work += w[g] * p;
+    }
+  }
+  if (fbar == FbarMode::VolumeAverage) {
+    // (sum_g w_g p_g) dJ0/J0 with J0 = sum_h w_h J_h / V: a pressure acting through each J_h
+    const double identity[6] = {1, 1, 1, 0, 0, 0};
+    for (int h = 0; h < 4; ++h) {
+      double cof[3][3];
+      detail::cofactor3(F[h], cof);
+      detail::add_force(identity, cof, pressure_work * w[h] / (vol0 * J0), dNdX + h * 30, fe);
+    }
+  } else if (fbar == FbarMode::Centroid) {
+    // J0 = det(Fc), Fc = sum_h F_h / 4: dJ0/J0 = Fc^-T : sum_h dF_h / 4
+    double cof[3][3];
+    detail::cofactor3(Fc, cof);
+    const double identity[6] = {1, 1, 1, 0, 0, 0};
+    for (int h = 0; h < 4; ++h)
+      detail::add_force(identity, cof, 0.25 * pressure_work / J0, dNdX + h * 30, fe);
   }
   return res;
+}
+
+// The elastic element without state or F-bar (kept for tests and benchmarks of the bare kernel).
+inline ElementResult tet10_elastic_forces(const double* xe, const double* dNdX, const double* w,
+                                          double lambda, double G, double* fe, double* sigma) {
+  GaussPointState st[4];
+  return tet10_internal_forces(xe, dNdX, w, ElasticModel{lambda, G}, FbarMode::Off, st, 0.0, fe,
+                               sigma);
 }
 
 // Smallest altitude of the corner tetrahedron (3 V / largest face area): the length that scales
