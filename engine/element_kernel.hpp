@@ -18,12 +18,11 @@
 // energy tests rely on.
 #include <cmath>
 
+#include "elements/fbar_mode.hpp"
 #include "elements/tet10_shape.hpp"
 #include "materials/finite_strain_update.hpp"
 
 namespace femdem {
-
-enum class FbarMode : unsigned char { Off, VolumeAverage, Centroid };
 
 struct ElementResult {
   double energy = 0.0;       // stored elastic energy of the element

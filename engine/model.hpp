@@ -9,6 +9,7 @@
 
 #include "elements/tet10_mesh.hpp"
 #include "engine/model_spec.hpp"
+#include "materials/finite_strain_update.hpp"
 
 namespace femdem {
 
@@ -16,6 +17,7 @@ struct Body {
   std::string name;
   int material = -1;
   bool fixed = false;
+  FbarMode fbar = FbarMode::Off;
   std::int32_t first_node = 0, node_count = 0;
   std::int32_t first_element = 0, element_count = 0;
   double mass = 0.0;             // sum of lumped nodal masses = rho V0
@@ -75,7 +77,10 @@ struct Model {
   // Stable-step shape factor per element: omega_max * h0 / c_d, from the element eigenproblem.
   std::vector<double> frequency_factor;
 
+  std::vector<FbarMode> element_fbar;
+
   // --- Gauss-point state (4 per element) ---
+  std::vector<GaussPointState> gp_state;  // plastic deformation and equivalent plastic strain
   std::vector<double> stress;  // Cauchy stress, 6 per point: xx yy zz xy yz xz
   std::vector<double> strain_energy_density;  // per reference volume
 

@@ -86,6 +86,8 @@ Model build_model(const ModelSpec& spec) {
   m.gauss_weight.resize(static_cast<std::size_t>(ne) * 4);
   m.frequency_factor.resize(ne);
   m.stress.assign(static_cast<std::size_t>(ne) * 24, 0.0);
+  m.gp_state.assign(static_cast<std::size_t>(ne) * 4, GaussPointState{});
+  m.element_fbar.assign(ne, FbarMode::Off);
   m.strain_energy_density.assign(static_cast<std::size_t>(ne) * 4, 0.0);
 
   std::int32_t node0 = 0, elem0 = 0;
@@ -96,6 +98,8 @@ Model build_model(const ModelSpec& spec) {
     body.name = bs.name;
     body.material = bs.material;
     body.fixed = bs.fixed;
+    body.fbar = bs.fbar.value_or(mat.model == MaterialModel::Elastic ? FbarMode::Off
+                                                                     : FbarMode::VolumeAverage);
     body.first_node = node0;
     body.node_count = static_cast<std::int32_t>(bs.mesh.nodes.size());
     body.first_element = elem0;
@@ -125,6 +129,7 @@ Model build_model(const ModelSpec& spec) {
       m.conn[ge] = global;
       m.element_body[ge] = static_cast<std::int32_t>(bi);
       m.element_material[ge] = bs.material;
+      m.element_fbar[ge] = body.fbar;
       double min_det = 0.0, vol = 0.0;
       double* dN = m.dNdX.data() + static_cast<std::size_t>(ge) * 120;
       double* w = m.gauss_weight.data() + static_cast<std::size_t>(ge) * 4;

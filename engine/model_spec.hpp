@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "elements/fbar_mode.hpp"
 #include "elements/tet10_mesh.hpp"
 #include "materials/material_params.hpp"
 
@@ -33,6 +34,8 @@ struct BodySpec {
   Vec3 velocity = Vec3::Zero();
   Vec3 angular_velocity = Vec3::Zero();  // rad/s about the body's initial centre of mass
   bool fixed = false;
+  // F-bar variant; unset: volume_average for plastic materials, off for elastic ones
+  std::optional<FbarMode> fbar;
 };
 
 struct WallSpec {

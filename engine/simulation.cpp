@@ -8,6 +8,7 @@
 
 #include "engine/element_kernel.hpp"
 #include "engine/errors.hpp"
+#include "materials/von_mises.hpp"
 
 namespace femdem {
 namespace {
@@ -25,17 +26,26 @@ Simulation::Simulation(Model model) : model_(std::move(model)) {
   elem_force_.assign(30 * ne, 0.0);
   elem_energy_.assign(ne, 0.0);
   elem_dt_.assign(ne, 0.0);
+  elem_dissipation_.assign(ne, 0.0);
+  for (const MaterialParams& p : model_.materials) {
+    CompiledMaterial c;
+    c.model = p.model;
+    c.elastic = ElasticModel{p.lame_lambda(), p.shear_modulus()};
+    if (p.model == MaterialModel::VonMises) c.von_mises = make_von_mises(p);
+    c.wave_speed = std::sqrt(p.p_wave_modulus() / p.density);
+    compiled_.push_back(std::move(c));
+  }
   // A node no element uses has no mass: hold it still rather than divide by zero.
   for (std::size_t n = 0; n < nn; ++n)
     if (!(model_.mass[n] > 0.0))
       for (int k = 0; k < 3; ++k) model_.dof_mode[3 * n + k] = 1, model_.v[3 * n + k] = 0.0;
-  compute_forces();
+  compute_forces(0.0);
   initial_balance_ = energies().balance();
   max_energy_ = std::fabs(initial_balance_);
   set_time_step();
 }
 
-void Simulation::compute_forces() {
+void Simulation::compute_forces(double step_dt) {
   Model& m = model_;
   const std::int32_t ne = m.element_count;
   const std::int32_t nn = m.node_count;
@@ -48,14 +58,25 @@ void Simulation::compute_forces() {
     double xe[30];
     for (int a = 0; a < 10; ++a)
       for (int k = 0; k < 3; ++k) xe[3 * a + k] = x[3 * c[a] + k];
-    const MaterialParams& mat = m.materials[m.element_material[e]];
-    const ElementResult r = tet10_elastic_forces(
-        xe, m.dNdX.data() + 120 * static_cast<std::size_t>(e),
-        m.gauss_weight.data() + 4 * static_cast<std::size_t>(e), mat.lame_lambda(),
-        mat.shear_modulus(), elem_force_.data() + 30 * static_cast<std::size_t>(e),
-        m.stress.data() + 24 * static_cast<std::size_t>(e));
+    const std::size_t es = static_cast<std::size_t>(e);
+    const CompiledMaterial& cm = compiled_[m.element_material[e]];
+    const double* dN = m.dNdX.data() + 120 * es;
+    const double* w = m.gauss_weight.data() + 4 * es;
+    GaussPointState* st = m.gp_state.data() + 4 * es;
+    double* fe = elem_force_.data() + 30 * es;
+    double* sig = m.stress.data() + 24 * es;
+    ElementResult r;
+    switch (cm.model) {  // one well-predicted branch per element, none per Gauss point
+      case MaterialModel::Elastic:
+        r = tet10_internal_forces(xe, dN, w, cm.elastic, m.element_fbar[e], st, step_dt, fe, sig);
+        break;
+      case MaterialModel::VonMises:
+        r = tet10_internal_forces(xe, dN, w, cm.von_mises, m.element_fbar[e], st, step_dt, fe, sig);
+        break;
+    }
     elem_energy_[e] = r.min_J > 0.0 ? r.energy : -HUGE_VAL;
-    const double cd = std::sqrt(mat.p_wave_modulus() / mat.density);
+    elem_dissipation_[e] = r.dissipation;
+    const double cd = cm.wave_speed;
     const double h = corner_tet_min_altitude(xe);
     elem_dt_[e] = (r.min_J > 0.0 && h > 0.0) ? 2.0 * h / (m.frequency_factor[e] * cd) : -1.0;
   }
@@ -86,6 +107,9 @@ void Simulation::compute_forces() {
     internal += elem_energy_[e];
   }
   internal_energy_ = internal;
+  double dissipated = 0.0;
+  for (std::int32_t e = 0; e < ne; ++e) dissipated += elem_dissipation_[e];
+  plastic_dissipation_ += dissipated;
 
   // 3. rigid walls: frictionless penalty on boundary nodes
   std::fill(m.f_wall.begin(), m.f_wall.end(), 0.0);
@@ -207,7 +231,7 @@ void Simulation::step(double dt_limit) {
   time_ += dt;
   ++steps_;
 
-  compute_forces();
+  compute_forces(dt);
 
   // second half kick
   bool finite = true;
@@ -240,6 +264,7 @@ Energies Simulation::energies() const {
   }
   e.kinetic = ke;
   e.internal = internal_energy_;
+  e.plastic_dissipation = plastic_dissipation_;
   e.contact = contact_energy_;
   e.external_work = external_work_;
   return e;
@@ -310,6 +335,9 @@ BodyState Simulation::body_state(int bi) const {
     }
   }
   s.volume = vol;
+  for (std::size_t g = 4 * static_cast<std::size_t>(b.first_element);
+       g < 4 * static_cast<std::size_t>(b.first_element + b.element_count); ++g)
+    s.max_equivalent_plastic_strain = std::max(s.max_equivalent_plastic_strain, m.gp_state[g].eps_p);
   return s;
 }
 
@@ -326,6 +354,9 @@ void Simulation::element_stress(std::vector<double>& stress6, std::vector<double
     for (int g = 0; g < 4; ++g)
       for (int k = 0; k < 6; ++k) s[k] += 0.25 * model_.stress[24 * static_cast<std::size_t>(e) + 6 * g + k];
     for (int k = 0; k < 6; ++k) stress6[6 * e + k] = s[k];
+    double ep = 0.0;
+    for (int g = 0; g < 4; ++g) ep += 0.25 * model_.gp_state[4 * static_cast<std::size_t>(e) + g].eps_p;
+    eq_plastic[e] = ep;
     const double p = -(s[0] + s[1] + s[2]) / 3.0;
     pressure[e] = p;
     const double d0 = s[0] + p, d1 = s[1] + p, d2 = s[2] + p;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "engine/model.hpp"
+#include "materials/von_mises.hpp"
 
 namespace femdem {
 
@@ -66,11 +67,24 @@ class Simulation {
                       std::vector<double>& pressure, std::vector<double>& eq_plastic) const;
 
  private:
-  void compute_forces();  // internal + wall contact at current x; updates energies and dt
+  // internal + wall contact at current x, after a step of length step_dt (0 at the start);
+  // advances the material state and updates energies and element steps
+  void compute_forces(double step_dt);
   void set_time_step();
   std::string advice() const;  // what to change when the run diverges
 
+  // A material's return mapping, built once from its parameters.
+  struct CompiledMaterial {
+    MaterialModel model = MaterialModel::Elastic;
+    ElasticModel elastic;
+    VonMises von_mises;
+    double wave_speed = 0.0;  // dilatational, sqrt((K + 4G/3) / rho)
+  };
+
   Model model_;
+  std::vector<CompiledMaterial> compiled_;
+  std::vector<double> elem_dissipation_;  // per element, this step
+  double plastic_dissipation_ = 0.0;
   double time_ = 0.0;
   std::int64_t steps_ = 0;
   double dt_ = 0.0;

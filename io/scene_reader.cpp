@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "io/scene_reader.hpp"
 
+#include "materials/von_mises.hpp"
+
 #include <toml++/toml.h>
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -234,8 +236,8 @@ std::string resolved_scene_text(const toml::table& root) {
   return os.str();
 }
 
-const std::vector<std::string> kAvailableModels = {"elastic"};
-const std::vector<std::string> kPlannedModels = {"von_mises", "drucker_prager", "mohr_coulomb",
+const std::vector<std::string> kAvailableModels = {"elastic", "von_mises"};
+const std::vector<std::string> kPlannedModels = {"drucker_prager", "mohr_coulomb",
                                                  "piecewise_drucker_prager"};
 const std::vector<std::string> kGenerators = {"box", "cylinder", "sphere"};
 const std::vector<std::string> kCadExtensions = {".stl", ".obj",  ".ply", ".off", ".step",
@@ -290,6 +292,8 @@ class Reader {
   std::optional<Vec3> opt_vec3(const toml::table& t, std::string_view k,
                                const std::string& prefix) const;
   bool boolean(const toml::table& t, std::string_view k, const std::string& prefix, bool def) const;
+  void read_von_mises(const toml::table& t, const std::string& p, MaterialParams& m,
+                      toml::table& o) const;
   std::optional<std::int64_t> opt_integer(const toml::table& t, std::string_view k,
                                           const std::string& prefix) const;
 
@@ -647,26 +651,96 @@ void Reader::read_materials(const toml::table& root, ModelSpec& spec, toml::arra
            "unknown material model '" + model + "'" + did_you_mean(model, all) +
                "; available: " + join(kAvailableModels));
     }
-    check_keys(t, p, {"name", "model", "density", "youngs_modulus", "poisson_ratio"},
-               "for model '" + model + "'");
+    std::vector<std::string> keys = {"name", "model", "density", "youngs_modulus", "poisson_ratio"};
+    if (model == "von_mises")
+      keys.insert(keys.end(), {"yield_stress", "hardening_modulus", "hardening_curve", "swift_k",
+                               "swift_eps0", "swift_n", "rate_coefficient",
+                               "reference_strain_rate"});
+    check_keys(t, p, keys, "for model '" + model + "'");
     MaterialParams m;
     m.name = entry_name(t, p, names, "material");
-    m.model = MaterialModel::Elastic;
+    m.model = model == "von_mises" ? MaterialModel::VonMises : MaterialModel::Elastic;
     m.density = positive(t, "density", p, std::nullopt, &t);
     m.youngs_modulus = positive(t, "youngs_modulus", p, std::nullopt, &t);
     m.poisson_ratio = number(t, "poisson_ratio", p, std::nullopt, &t);
     if (!(m.poisson_ratio > -1.0 && m.poisson_ratio < 0.5))
       fail(t.get("poisson_ratio"), dotted(p, "poisson_ratio"),
            "must lie in (-1, 0.5), got " + format_number(m.poisson_ratio));
-    spec.materials.push_back(m);
     toml::table o;
     o.insert_or_assign("name", m.name);
     o.insert_or_assign("model", model);
     o.insert_or_assign("density", m.density);
     o.insert_or_assign("youngs_modulus", m.youngs_modulus);
     o.insert_or_assign("poisson_ratio", m.poisson_ratio);
+    if (m.model == MaterialModel::VonMises) read_von_mises(t, p, m, o);
+    spec.materials.push_back(m);
     out.push_back(std::move(o));
   }
+}
+
+// von Mises hardening: linear (hardening_modulus), a tabulated curve (hardening_curve), or
+// Swift's power law (swift_k, swift_eps0, swift_n); optional Johnson-Cook rate factor.
+void Reader::read_von_mises(const toml::table& t, const std::string& p, MaterialParams& m,
+                            toml::table& o) const {
+  const bool has_curve = t.contains("hardening_curve");
+  const bool has_swift = t.contains("swift_k") || t.contains("swift_eps0") || t.contains("swift_n");
+  const bool has_linear = t.contains("hardening_modulus");
+  if (int(has_curve) + int(has_swift) + int(has_linear) > 1)
+    fail(&t, p,
+         "give one hardening law: 'hardening_modulus' (linear), 'hardening_curve' (tabulated) "
+         "or 'swift_k', 'swift_eps0', 'swift_n' (power law)");
+  if (has_curve) {
+    m.hardening = HardeningLaw::Tabulated;
+    const toml::node* cn = t.get("hardening_curve");
+    const toml::array* arr = cn->as_array();
+    if (!arr || arr->empty())
+      fail(cn, dotted(p, "hardening_curve"),
+           "must be a non-empty array of [equivalent_plastic_strain, stress] pairs");
+    toml::array co;
+    for (const toml::node& pt : *arr) {
+      const toml::array* pair = pt.as_array();
+      if (!pair || pair->size() != 2 || !(*pair)[0].is_number() || !(*pair)[1].is_number())
+        fail(&pt, dotted(p, "hardening_curve"),
+             "each point must be [equivalent_plastic_strain, stress] (two numbers)");
+      const double e = (*pair)[0].value<double>().value(), y = (*pair)[1].value<double>().value();
+      m.hardening_curve.emplace_back(e, y);
+      co.push_back(toml::array{e, y});
+    }
+    o.insert_or_assign("hardening_curve", std::move(co));
+    if (t.contains("yield_stress"))
+      fail(t.get("yield_stress"), dotted(p, "yield_stress"),
+           "is given by the first point of 'hardening_curve'; remove one of them");
+    m.yield_stress = m.hardening_curve.front().second;
+  } else if (has_swift) {
+    m.hardening = HardeningLaw::Swift;
+    m.swift_K = positive(t, "swift_k", p, std::nullopt, &t);
+    m.swift_eps0 = positive(t, "swift_eps0", p, std::nullopt, &t);
+    m.swift_n = positive(t, "swift_n", p, std::nullopt, &t);
+    m.yield_stress = m.swift_K * std::pow(m.swift_eps0, m.swift_n);
+    if (t.contains("yield_stress"))
+      fail(t.get("yield_stress"), dotted(p, "yield_stress"),
+           "is swift_k * swift_eps0^swift_n for the Swift law; remove it");
+    o.insert_or_assign("swift_k", m.swift_K);
+    o.insert_or_assign("swift_eps0", m.swift_eps0);
+    o.insert_or_assign("swift_n", m.swift_n);
+  } else {
+    m.hardening = HardeningLaw::Linear;
+    m.yield_stress = positive(t, "yield_stress", p, std::nullopt, &t);
+    m.hardening_modulus = number(t, "hardening_modulus", p, 0.0, &t);
+    o.insert_or_assign("yield_stress", m.yield_stress);
+    o.insert_or_assign("hardening_modulus", m.hardening_modulus);
+  }
+  if (t.contains("rate_coefficient") || t.contains("reference_strain_rate")) {
+    m.jc_C = number(t, "rate_coefficient", p, 0.0, &t);
+    if (m.jc_C < 0.0)
+      fail(t.get("rate_coefficient"), dotted(p, "rate_coefficient"),
+           "must be >= 0, got " + format_number(m.jc_C));
+    m.jc_epsdot0 = positive(t, "reference_strain_rate", p, 1.0, &t);
+    o.insert_or_assign("rate_coefficient", m.jc_C);
+    o.insert_or_assign("reference_strain_rate", m.jc_epsdot0);
+  }
+  const std::string err = von_mises_param_error(m);
+  if (!err.empty()) fail(&t, p, err);
 }
 
 Tet10Mesh Reader::read_mesh(const toml::table& mesh, const std::string& bp,
@@ -792,7 +866,7 @@ void Reader::read_bodies(const toml::table& root, ModelSpec& spec, toml::array& 
     const toml::table& t = *tp;
     check_keys(t, p,
                {"name", "material", "mesh", "position", "rotation", "velocity", "angular_velocity",
-                "fixed"});
+                "fixed", "fbar"});
     BodySpec b;
     b.name = entry_name(t, p, names, "body");
     const std::string mat = string(t, "material", p, &t);
@@ -811,6 +885,17 @@ void Reader::read_bodies(const toml::table& root, ModelSpec& spec, toml::array& 
     b.velocity = opt_vec3(t, "velocity", p).value_or(Vec3::Zero());
     b.angular_velocity = opt_vec3(t, "angular_velocity", p).value_or(Vec3::Zero());
     b.fixed = boolean(t, "fixed", p, false);
+    if (const toml::node* fb = t.get("fbar")) {
+      if (auto flag = fb->value<bool>()) {
+        b.fbar = *flag ? FbarMode::VolumeAverage : FbarMode::Off;
+      } else {
+        const std::string v = string(t, "fbar", p, &t);
+        b.fbar = parse_fbar_mode(v);
+        if (!b.fbar)
+          fail(fb, dotted(p, "fbar"),
+               "must be true, false, \"volume_average\", \"centroid\" or \"off\", got '" + v + "'");
+      }
+    }
 
     const toml::node* mn = t.get("mesh");
     if (!mn) fail(&t, dotted(p, "mesh"), "required value is missing");
@@ -831,6 +916,11 @@ void Reader::read_bodies(const toml::table& root, ModelSpec& spec, toml::array& 
         "angular_velocity",
         toml::array{b.angular_velocity.x(), b.angular_velocity.y(), b.angular_velocity.z()});
     o.insert_or_assign("fixed", b.fixed);
+    {
+      const bool elastic = spec.materials[b.material].model == MaterialModel::Elastic;
+      o.insert_or_assign("fbar", to_string(b.fbar.value_or(elastic ? FbarMode::Off
+                                                                   : FbarMode::VolumeAverage)));
+    }
     out.push_back(std::move(o));
     spec.bodies.push_back(std::move(b));
   }
