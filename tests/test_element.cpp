@@ -252,3 +252,51 @@ TEST(Tet10, ElementFrequencyBoundsTheMesh) {
   RecordProperty("omega_mesh_over_bound", std::to_string(omega_mesh / omega_bound));
   std::printf("omega_mesh / omega_bound = %.4f\n", omega_mesh / omega_bound);
 }
+
+// F-bar (both variants): under a homogeneous deformation J is the same at every Gauss point, so
+// F-bar changes nothing; and its forces are the exact gradient of its energy (the energy
+// balance relies on it): central differences of the energy against the forces.
+TEST(Tet10, FbarIsExactUnderHomogeneousDeformationAndConservative) {
+  const Model m = build_model(one_body(test::kuhn_box(1, 1, 1, Vec3(1, 1, 1))));
+  const MaterialParams& mat = m.materials[0];
+  const ElasticModel elastic{mat.lame_lambda(), mat.shear_modulus()};
+  const int e = 2;
+  const double* dN = &m.dNdX[120 * e];
+  const double* w = &m.gauss_weight[4 * e];
+  Eigen::Matrix3d F0;
+  F0 << 1.05, 0.02, 0.01, -0.03, 0.96, 0.02, 0.01, 0.04, 1.03;
+  double xe[30];
+  for (int a = 0; a < 10; ++a) {
+    const int n = m.conn[e][a];
+    const Vec3 x = F0 * Vec3(m.X[3 * n], m.X[3 * n + 1], m.X[3 * n + 2]);
+    for (int k = 0; k < 3; ++k) xe[3 * a + k] = x[k];
+  }
+  double f_off[30], s_off[24];
+  GaussPointState st[4];
+  tet10_internal_forces(xe, dN, w, elastic, FbarMode::Off, st, 0.0, f_off, s_off);
+  for (FbarMode mode : {FbarMode::VolumeAverage, FbarMode::Centroid}) {
+    double f[30], s[24];
+    GaussPointState st2[4];
+    tet10_internal_forces(xe, dN, w, elastic, mode, st2, 0.0, f, s);
+    for (int i = 0; i < 30; ++i) EXPECT_NEAR(f[i], f_off[i], 1e-12 * 210e9);
+    for (int i = 0; i < 24; ++i) EXPECT_NEAR(s[i], s_off[i], 1e-12 * 210e9);
+    // a non-homogeneous state: forces = dW/dx
+    double y[30];
+    for (int i = 0; i < 30; ++i) y[i] = xe[i] + 0.01 * std::sin(1.7 * i + 0.3);
+    double fy[30], sy[24];
+    tet10_internal_forces(y, dN, w, elastic, mode, st2, 0.0, fy, sy);
+    double fmax = 0.0;
+    for (int i = 0; i < 30; ++i) fmax = std::max(fmax, std::fabs(fy[i]));
+    for (int i = 0; i < 30; ++i) {
+      const double h = 1e-6;
+      double yp[30], ym[30], ft[30], st_[24];
+      std::copy(y, y + 30, yp);
+      std::copy(y, y + 30, ym);
+      yp[i] += h;
+      ym[i] -= h;
+      const double Wp = tet10_internal_forces(yp, dN, w, elastic, mode, st2, 0.0, ft, st_).energy;
+      const double Wm = tet10_internal_forces(ym, dN, w, elastic, mode, st2, 0.0, ft, st_).energy;
+      EXPECT_NEAR((Wp - Wm) / (2 * h), fy[i], 2e-6 * fmax) << "dof " << i << " mode " << to_string(mode);
+    }
+  }
+}
