@@ -6,13 +6,17 @@
 
 namespace femdem {
 
-enum class FbarMode : unsigned char { Off, VolumeAverage, Centroid };
+// Nodal: J0 interpolated linearly from corner-node values, each the volume ratio of the elements
+// around that corner (a continuous linear volume field under quadratic displacements, as in
+// the stable P2/P1 pair).
+enum class FbarMode : unsigned char { Off, VolumeAverage, Centroid, Nodal };
 
 inline const char* to_string(FbarMode m) {
   switch (m) {
     case FbarMode::Off: return "off";
     case FbarMode::VolumeAverage: return "volume_average";
     case FbarMode::Centroid: return "centroid";
+    case FbarMode::Nodal: return "nodal";
   }
   return "?";
 }
@@ -21,6 +25,7 @@ inline std::optional<FbarMode> parse_fbar_mode(const std::string& s) {
   if (s == "off") return FbarMode::Off;
   if (s == "volume_average") return FbarMode::VolumeAverage;
   if (s == "centroid") return FbarMode::Centroid;
+  if (s == "nodal") return FbarMode::Nodal;
   return std::nullopt;
 }
 

@@ -70,11 +70,15 @@ inline void add_force(const double S6[6], const double cof[3][3], double scale, 
 // xe: 30 current coordinates (node-major); dNdX: 4 x 10 x 3; w: 4 Gauss weights x det J0;
 // state: 4 Gauss-point states (updated); dt: this step (rate-dependent models).
 // fe: 30 internal forces out; sigma: 4 x 6 Cauchy stress out.
+// Nodal mode only: corner_J (in) the 4 corner nodes' averaged volume ratios; pressure_weight
+// (out) sum_g w_g p_g L_c(g) / J0_g per corner c: the element's share of dW/dJbar_c, which the
+// caller gathers per node and turns into forces (see Simulation::compute_forces).
 template <class Material>
 inline ElementResult tet10_internal_forces(const double* xe, const double* dNdX, const double* w,
                                            const Material& material, FbarMode fbar,
                                            GaussPointState* state, double dt, double* fe,
-                                           double* sigma) {
+                                           double* sigma, const double* corner_J = nullptr,
+                                           double* pressure_weight = nullptr) {
   ElementResult res;
   res.min_J = HUGE_VAL;
   for (int i = 0; i < 30; ++i) fe[i] = 0.0;
@@ -107,18 +111,28 @@ inline ElementResult tet10_internal_forces(const double* xe, const double* dNdX,
     }
   }
 
+  double J0g[4] = {J0, J0, J0, J0};
+  if (fbar == FbarMode::Nodal) {
+    for (int g = 0; g < 4; ++g) {
+      J0g[g] = 0.0;
+      for (int c = 0; c < 4; ++c)
+        J0g[g] += (c == g ? tet10::kGaussA : tet10::kGaussB) * corner_J[c];
+    }
+    for (int c = 0; c < 4; ++c) pressure_weight[c] = 0.0;
+  }
+
   double pressure_work = 0.0;  // sum_g w_g tr(tau_g) / 3
   for (int g = 0; g < 4; ++g) {
     double Fm[3][3];
     double scale = 1.0;
-    if (fbar != FbarMode::Off) scale = std::cbrt(J0 / J[g]);
+    if (fbar != FbarMode::Off) scale = std::cbrt(J0g[g] / J[g]);
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) Fm[i][j] = scale * F[g][i][j];
     const FiniteStrainResult r = finite_strain_update(Fm, state[g], material, dt);
     res.energy += w[g] * r.energy;
     res.dissipation += w[g] * r.dissipation;
     res.max_eps_p = std::fmax(res.max_eps_p, state[g].eps_p);
-    const double Jm = (fbar != FbarMode::Off) ? J0 : J[g];
+    const double Jm = (fbar != FbarMode::Off) ? J0g[g] : J[g];
     for (int k = 0; k < 6; ++k) sigma[6 * g + k] = r.tau[k] / Jm;
     double cof[3][3];
     detail::cofactor3(F[g], cof);
@@ -129,6 +143,9 @@ inline ElementResult tet10_internal_forces(const double* xe, const double* dNdX,
       const double dev[6] = {r.tau[0] - p, r.tau[1] - p, r.tau[2] - p, r.tau[3], r.tau[4], r.tau[5]};
       detail::add_force(dev, cof, w[g] / J[g], dNdX + g * 30, fe);
       pressure_work += w[g] * p;
+      if (fbar == FbarMode::Nodal)
+        for (int c = 0; c < 4; ++c)
+          pressure_weight[c] += w[g] * p * (c == g ? tet10::kGaussA : tet10::kGaussB) / J0g[g];
     }
   }
   if (fbar == FbarMode::VolumeAverage) {
@@ -148,6 +165,37 @@ inline ElementResult tet10_internal_forces(const double* xe, const double* dNdX,
       detail::add_force(identity, cof, 0.25 * pressure_work / J0, dNdX + h * 30, fe);
   }
   return res;
+}
+
+// f_a += s sum_h w_h J_h F_h^-T dN_a/dX|_h = s d(element volume)/dx_a: the nodal F-bar's
+// pressure forces, s = sum over the element's corners of Q_c / V_c.
+inline void tet10_add_volume_gradient(const double* xe, const double* dNdX, const double* w,
+                                      double s, double* fe) {
+  const double identity[6] = {1, 1, 1, 0, 0, 0};
+  for (int g = 0; g < 4; ++g) {
+    const double* d = dNdX + g * 30;
+    double F[3][3] = {};
+    for (int a = 0; a < 10; ++a)
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) F[i][j] += xe[3 * a + i] * d[3 * a + j];
+    double cof[3][3];
+    detail::cofactor3(F, cof);
+    detail::add_force(identity, cof, s * w[g], d, fe);
+  }
+}
+
+// Current volume of the element: sum_g w_g det F_g.
+inline double tet10_current_volume(const double* xe, const double* dNdX, const double* w) {
+  double v = 0.0;
+  for (int g = 0; g < 4; ++g) {
+    const double* d = dNdX + g * 30;
+    double F[3][3] = {};
+    for (int a = 0; a < 10; ++a)
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) F[i][j] += xe[3 * a + i] * d[3 * a + j];
+    v += w[g] * detail::det3(F);
+  }
+  return v;
 }
 
 // The elastic element without state or F-bar (kept for tests and benchmarks of the bare kernel).

@@ -27,6 +27,23 @@ Simulation::Simulation(Model model) : model_(std::move(model)) {
   elem_energy_.assign(ne, 0.0);
   elem_dt_.assign(ne, 0.0);
   elem_dissipation_.assign(ne, 0.0);
+  for (std::int32_t e = 0; e < model_.element_count; ++e)
+    has_nodal_fbar_ = has_nodal_fbar_ || model_.element_fbar[e] == FbarMode::Nodal;
+  if (has_nodal_fbar_) {
+    // reference volume around each corner node, over the nodal-F-bar elements that share it
+    elem_volume_.assign(ne, 0.0);
+    elem_pressure_weight_.assign(4 * ne, 0.0);
+    node_J_.assign(nn, 1.0);
+    node_Q_.assign(nn, 0.0);
+    node_ref_volume_.assign(nn, 0.0);
+    for (std::int32_t n = 0; n < model_.node_count; ++n)
+      for (std::int32_t k = model_.node_elem_offset[n]; k < model_.node_elem_offset[n + 1]; ++k) {
+        const std::int32_t slot = model_.node_elem_slot[k], e = slot / 10;
+        if (slot % 10 >= 4 || model_.element_fbar[e] != FbarMode::Nodal) continue;
+        const double* w = model_.gauss_weight.data() + 4 * static_cast<std::size_t>(e);
+        node_ref_volume_[n] += w[0] + w[1] + w[2] + w[3];
+      }
+  }
   for (const MaterialParams& p : model_.materials) {
     CompiledMaterial c;
     c.model = p.model;
@@ -51,6 +68,29 @@ void Simulation::compute_forces(double step_dt) {
   const std::int32_t nn = m.node_count;
   const double* x = m.x.data();
 
+  // 0. nodal F-bar: each corner node's volume ratio over the elements around it
+  if (has_nodal_fbar_) {
+#pragma omp parallel for schedule(static) if (ne > kParallelMinElements)
+    for (std::int32_t e = 0; e < ne; ++e) {
+      if (m.element_fbar[e] != FbarMode::Nodal) continue;
+      double xe[30];
+      for (int a = 0; a < 10; ++a)
+        for (int k = 0; k < 3; ++k) xe[3 * a + k] = x[3 * m.conn[e][a] + k];
+      const std::size_t es = static_cast<std::size_t>(e);
+      elem_volume_[e] = tet10_current_volume(xe, m.dNdX.data() + 120 * es, m.gauss_weight.data() + 4 * es);
+    }
+#pragma omp parallel for schedule(static) if (nn > kParallelMinNodes)
+    for (std::int32_t n = 0; n < nn; ++n) {
+      if (!(node_ref_volume_[n] > 0.0)) continue;
+      double v = 0.0;
+      for (std::int32_t k = m.node_elem_offset[n]; k < m.node_elem_offset[n + 1]; ++k) {
+        const std::int32_t slot = m.node_elem_slot[k], e = slot / 10;
+        if (slot % 10 < 4 && m.element_fbar[e] == FbarMode::Nodal) v += elem_volume_[e];
+      }
+      node_J_[n] = v / node_ref_volume_[n];
+    }
+  }
+
   // 1. elements: independent, written to per-element buffers
 #pragma omp parallel for schedule(static) if (ne > kParallelMinElements)
   for (std::int32_t e = 0; e < ne; ++e) {
@@ -65,13 +105,20 @@ void Simulation::compute_forces(double step_dt) {
     GaussPointState* st = m.gp_state.data() + 4 * es;
     double* fe = elem_force_.data() + 30 * es;
     double* sig = m.stress.data() + 24 * es;
+    const FbarMode fbar = m.element_fbar[e];
+    double cJ[4] = {1, 1, 1, 1};
+    double* q = nullptr;
+    if (fbar == FbarMode::Nodal) {
+      for (int k = 0; k < 4; ++k) cJ[k] = node_J_[c[k]];
+      q = elem_pressure_weight_.data() + 4 * es;
+    }
     ElementResult r;
     switch (cm.model) {  // one well-predicted branch per element, none per Gauss point
       case MaterialModel::Elastic:
-        r = tet10_internal_forces(xe, dN, w, cm.elastic, m.element_fbar[e], st, step_dt, fe, sig);
+        r = tet10_internal_forces(xe, dN, w, cm.elastic, fbar, st, step_dt, fe, sig, cJ, q);
         break;
       case MaterialModel::VonMises:
-        r = tet10_internal_forces(xe, dN, w, cm.von_mises, m.element_fbar[e], st, step_dt, fe, sig);
+        r = tet10_internal_forces(xe, dN, w, cm.von_mises, fbar, st, step_dt, fe, sig, cJ, q);
         break;
     }
     elem_energy_[e] = r.min_J > 0.0 ? r.energy : -HUGE_VAL;
@@ -79,6 +126,34 @@ void Simulation::compute_forces(double step_dt) {
     const double cd = cm.wave_speed;
     const double h = corner_tet_min_altitude(xe);
     elem_dt_[e] = (r.min_J > 0.0 && h > 0.0) ? 2.0 * h / (m.frequency_factor[e] * cd) : -1.0;
+  }
+
+  // 1b. nodal F-bar pressure: gather each corner's dW/dJbar, then every element adds
+  // sum_c Q_c / V_c times the gradient of its own volume
+  if (has_nodal_fbar_) {
+#pragma omp parallel for schedule(static) if (nn > kParallelMinNodes)
+    for (std::int32_t n = 0; n < nn; ++n) {
+      if (!(node_ref_volume_[n] > 0.0)) continue;
+      double Q = 0.0;
+      for (std::int32_t k = m.node_elem_offset[n]; k < m.node_elem_offset[n + 1]; ++k) {
+        const std::int32_t slot = m.node_elem_slot[k], e = slot / 10;
+        if (slot % 10 < 4 && m.element_fbar[e] == FbarMode::Nodal)
+          Q += elem_pressure_weight_[4 * static_cast<std::size_t>(e) + slot % 10];
+      }
+      node_Q_[n] = Q / node_ref_volume_[n];
+    }
+#pragma omp parallel for schedule(static) if (ne > kParallelMinElements)
+    for (std::int32_t e = 0; e < ne; ++e) {
+      if (m.element_fbar[e] != FbarMode::Nodal) continue;
+      const Tet10& c = m.conn[e];
+      double xe[30];
+      for (int a = 0; a < 10; ++a)
+        for (int k = 0; k < 3; ++k) xe[3 * a + k] = x[3 * c[a] + k];
+      const double s = node_Q_[c[0]] + node_Q_[c[1]] + node_Q_[c[2]] + node_Q_[c[3]];
+      const std::size_t es = static_cast<std::size_t>(e);
+      tet10_add_volume_gradient(xe, m.dNdX.data() + 120 * es, m.gauss_weight.data() + 4 * es, s,
+                                elem_force_.data() + 30 * es);
+    }
   }
 
   // 2. gather per node in the fixed CSR order: same bits for any thread count

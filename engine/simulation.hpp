@@ -85,6 +85,9 @@ class Simulation {
   std::vector<CompiledMaterial> compiled_;
   std::vector<double> elem_dissipation_;  // per element, this step
   double plastic_dissipation_ = 0.0;
+  // nodal F-bar (FbarMode::Nodal) work arrays
+  bool has_nodal_fbar_ = false;
+  std::vector<double> elem_volume_, elem_pressure_weight_, node_J_, node_Q_, node_ref_volume_;
   double time_ = 0.0;
   std::int64_t steps_ = 0;
   double dt_ = 0.0;
