@@ -13,10 +13,14 @@ enum class FbarMode : unsigned char { Off, VolumeAverage, Centroid, Nodal };
 
 inline const char* to_string(FbarMode m) {
   switch (m) {
-    case FbarMode::Off: return "off";
-    case FbarMode::VolumeAverage: return "volume_average";
-    case FbarMode::Centroid: return "centroid";
-    case FbarMode::Nodal: return "nodal";
+    case FbarMode::Off:
+      return "off";
+    case FbarMode::VolumeAverage:
+      return "volume_average";
+    case FbarMode::Centroid:
+      return "centroid";
+    case FbarMode::Nodal:
+      return "nodal";
   }
   return "?";
 }

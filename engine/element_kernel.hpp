@@ -140,7 +140,8 @@ inline ElementResult tet10_internal_forces(const double* xe, const double* dNdX,
       detail::add_force(r.tau, cof, w[g] / J[g], dNdX + g * 30, fe);  // P = tau F^-T
     } else {
       const double p = (r.tau[0] + r.tau[1] + r.tau[2]) / 3.0;
-      const double dev[6] = {r.tau[0] - p, r.tau[1] - p, r.tau[2] - p, r.tau[3], r.tau[4], r.tau[5]};
+      const double dev[6] = {r.tau[0] - p, r.tau[1] - p, r.tau[2] - p,
+                             r.tau[3],     r.tau[4],     r.tau[5]};
       detail::add_force(dev, cof, w[g] / J[g], dNdX + g * 30, fe);
       pressure_work += w[g] * p;
       if (fbar == FbarMode::Nodal)

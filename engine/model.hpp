@@ -20,7 +20,7 @@ struct Body {
   FbarMode fbar = FbarMode::Off;
   std::int32_t first_node = 0, node_count = 0;
   std::int32_t first_element = 0, element_count = 0;
-  double mass = 0.0;             // sum of lumped nodal masses = rho V0
+  double mass = 0.0;  // sum of lumped nodal masses = rho V0
   double reference_volume = 0.0;
   std::vector<std::int32_t> surface_nodes;  // global node ids on the boundary
 };
@@ -33,6 +33,7 @@ struct Wall {
   Vec3 velocity = Vec3::Zero();
   double friction = 0.0;
   double penalty_factor = 100.0;
+  double damping = 0.0;       // fraction of critical damping of each node's contact spring
   Vec3 force = Vec3::Zero();  // force the bodies exert on the wall, last step
 };
 
@@ -55,12 +56,12 @@ struct Model {
 
   // --- nodes (3 doubles per node for vectors) ---
   std::int32_t node_count = 0;
-  std::vector<double> X;         // reference coordinates
-  std::vector<double> x;         // current coordinates
-  std::vector<double> v;         // velocity (at the half step between updates)
-  std::vector<double> f_int;     // internal force (element stresses), gathered
-  std::vector<double> f_wall;    // wall contact force
-  std::vector<double> mass;      // lumped (HRZ), one per node
+  std::vector<double> X;       // reference coordinates
+  std::vector<double> x;       // current coordinates
+  std::vector<double> v;       // velocity (at the half step between updates)
+  std::vector<double> f_int;   // internal force (element stresses), gathered
+  std::vector<double> f_wall;  // wall contact force
+  std::vector<double> mass;    // lumped (HRZ), one per node
   std::vector<std::int32_t> node_body;
   std::vector<std::uint8_t> dof_mode;  // 3 per node: 0 free, 1 fixed, 2 prescribed velocity
   std::vector<double> dof_velocity;    // 3 per node: prescribed velocity where dof_mode == 2
@@ -80,8 +81,8 @@ struct Model {
   std::vector<FbarMode> element_fbar;
 
   // --- Gauss-point state (4 per element) ---
-  std::vector<GaussPointState> gp_state;  // plastic deformation and equivalent plastic strain
-  std::vector<double> stress;  // Cauchy stress, 6 per point: xx yy zz xy yz xz
+  std::vector<GaussPointState> gp_state;      // plastic deformation and equivalent plastic strain
+  std::vector<double> stress;                 // Cauchy stress, 6 per point: xx yy zz xy yz xz
   std::vector<double> strain_energy_density;  // per reference volume
 
   // --- node -> (element, local node) map for the deterministic gather (CSR) ---

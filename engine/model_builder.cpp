@@ -144,11 +144,13 @@ Model build_model(const ModelSpec& spec) {
       body.reference_volume += vol;
     }
     if (bad_count > 0)
-      throw InputError(std::to_string(bad_count) + " inverted or degenerate element(s) (det J <= 0 at a "
-                       "Gauss point), the first is element " + bad + " (0-based, in mesh order)",
+      throw InputError(std::to_string(bad_count) +
+                           " inverted or degenerate element(s) (det J <= 0 at a "
+                           "Gauss point), the first is element " +
+                           bad + " (0-based, in mesh order)",
                        {}, 0, 0, "bodies." + bs.name + ".mesh");
 
-    // Stable-step factor: omega_max * h0 / c_d; at run time omega = factor * c_d / h(t).
+      // Stable-step factor: omega_max * h0 / c_d; at run time omega = factor * c_d / h(t).
 #pragma omp parallel for schedule(static)
     for (std::int32_t e = 0; e < body.element_count; ++e) {
       const std::int32_t ge = elem0 + e;
@@ -163,8 +165,9 @@ Model build_model(const ModelSpec& spec) {
       const double* p = xe;
       Vec3 p0(p[0], p[1], p[2]), p1(p[3], p[4], p[5]), p2(p[6], p[7], p[8]), p3(p[9], p[10], p[11]);
       const double v6 = (p1 - p0).dot((p2 - p0).cross(p3 - p0));
-      const double a2 = std::max(std::max((p1 - p0).cross(p2 - p0).norm(), (p1 - p0).cross(p3 - p0).norm()),
-                                 std::max((p2 - p0).cross(p3 - p0).norm(), (p2 - p1).cross(p3 - p1).norm()));
+      const double a2 =
+          std::max(std::max((p1 - p0).cross(p2 - p0).norm(), (p1 - p0).cross(p3 - p0).norm()),
+                   std::max((p2 - p0).cross(p3 - p0).norm(), (p2 - p1).cross(p3 - p1).norm()));
       const double h0 = v6 / a2;
       m.frequency_factor[ge] = omega * h0 / cd;
     }
@@ -172,7 +175,8 @@ Model build_model(const ModelSpec& spec) {
     // Initial velocity: translation plus rotation about the initial centre of mass.
     Vec3 com = Vec3::Zero();
     for (std::int32_t i = 0; i < body.node_count; ++i)
-      com += m.mass[node0 + i] * Vec3(m.X[3 * (node0 + i)], m.X[3 * (node0 + i) + 1], m.X[3 * (node0 + i) + 2]);
+      com += m.mass[node0 + i] *
+             Vec3(m.X[3 * (node0 + i)], m.X[3 * (node0 + i) + 1], m.X[3 * (node0 + i) + 2]);
     com /= body.mass;
     for (std::int32_t i = 0; i < body.node_count; ++i) {
       const std::int32_t n = node0 + i;
@@ -185,13 +189,17 @@ Model build_model(const ModelSpec& spec) {
 
     // Boundary nodes with their share of area (HRZ lumping of the 6-node face: corner A/19,
     // mid-edge 16A/57) and the depth of the element behind the face (3V/A of the corner tet).
-    std::vector<Tet10> global_elems(m.conn.begin() + elem0, m.conn.begin() + elem0 + body.element_count);
+    std::vector<Tet10> global_elems(m.conn.begin() + elem0,
+                                    m.conn.begin() + elem0 + body.element_count);
     const auto faces = boundary_faces(global_elems);
     std::map<std::int32_t, std::pair<double, double>> node_area_depth;  // node -> (area, depth)
     for (const auto& f : faces) {
       const Tet10& el = global_elems[f.element];
       const auto& fl = kTet10Faces[f.face];
-      auto P = [&](int a) { const auto n = el[a]; return Vec3(m.X[3 * n], m.X[3 * n + 1], m.X[3 * n + 2]); };
+      auto P = [&](int a) {
+        const auto n = el[a];
+        return Vec3(m.X[3 * n], m.X[3 * n + 1], m.X[3 * n + 2]);
+      };
       const double area = 0.5 * (P(fl[1]) - P(fl[0])).cross(P(fl[2]) - P(fl[0])).norm();
       const double v6 = (P(1) - P(0)).dot((P(2) - P(0)).cross(P(3) - P(0)));
       const double depth = v6 / (2.0 * area);
@@ -253,6 +261,7 @@ Model build_model(const ModelSpec& spec) {
     w.velocity = ws.velocity;
     w.friction = ws.friction;
     w.penalty_factor = ws.penalty_factor > 0.0 ? ws.penalty_factor : spec.contact.penalty_factor;
+    w.damping = ws.damping;
     m.walls.push_back(w);
   }
 

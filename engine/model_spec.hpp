@@ -15,7 +15,7 @@
 namespace femdem {
 
 struct SimulationSettings {
-  double end_time = 0.0;          // required
+  double end_time = 0.0;  // required
   // Fraction of the stable step. The estimate (max element eigenfrequency, elements/
   // tet10_frequency.hpp) bounds the mesh frequency of the undeformed linear system, but
   // distorted elements and contact stiffen it: 0.8 let a sphere-on-wall impact gain 1 % energy,
@@ -25,13 +25,13 @@ struct SimulationSettings {
   double output_interval = 0.0;   // 0: end_time / 50
   double history_interval = 0.0;  // 0: output_interval / 20
   Vec3 gravity = Vec3::Zero();
-  int threads = 0;                // 0: all cores
+  int threads = 0;  // 0: all cores
 };
 
 struct BodySpec {
   std::string name;
-  int material = -1;     // index into ModelSpec::materials
-  Tet10Mesh mesh;        // already rotated and placed
+  int material = -1;  // index into ModelSpec::materials
+  Tet10Mesh mesh;     // already rotated and placed
   Vec3 velocity = Vec3::Zero();
   Vec3 angular_velocity = Vec3::Zero();  // rad/s about the body's initial centre of mass
   bool fixed = false;
@@ -46,6 +46,10 @@ struct WallSpec {
   Vec3 velocity = Vec3::Zero();
   double friction = 0.0;
   double penalty_factor = 0.0;  // 0: ContactSettings::penalty_factor
+  // Fraction of critical damping of each node's contact spring. 0 keeps contact elastic; a
+  // high-speed impact on soft (yielding) material needs some, or the light corner nodes of the
+  // impact face bounce off the wall into the body.
+  double damping = 0.0;
 };
 
 // Region of a body's reference configuration whose nodes a constraint acts on.

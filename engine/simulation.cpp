@@ -77,7 +77,8 @@ void Simulation::compute_forces(double step_dt) {
       for (int a = 0; a < 10; ++a)
         for (int k = 0; k < 3; ++k) xe[3 * a + k] = x[3 * m.conn[e][a] + k];
       const std::size_t es = static_cast<std::size_t>(e);
-      elem_volume_[e] = tet10_current_volume(xe, m.dNdX.data() + 120 * es, m.gauss_weight.data() + 4 * es);
+      elem_volume_[e] =
+          tet10_current_volume(xe, m.dNdX.data() + 120 * es, m.gauss_weight.data() + 4 * es);
     }
 #pragma omp parallel for schedule(static) if (nn > kParallelMinNodes)
     for (std::int32_t n = 0; n < nn; ++n) {
@@ -188,7 +189,7 @@ void Simulation::compute_forces(double step_dt) {
 
   // 3. rigid walls: frictionless penalty on boundary nodes
   std::fill(m.f_wall.begin(), m.f_wall.end(), 0.0);
-  double contact = 0.0;
+  double contact = 0.0, damping_power = 0.0;
   for (auto& w : m.walls) w.force.setZero();
   if (!m.walls.empty()) {
     for (const SurfaceNode& s : m.surface) {
@@ -200,7 +201,16 @@ void Simulation::compute_forces(double step_dt) {
         const double d = (w.point - p).dot(w.normal);  // penetration depth
         if (d <= 0.0) continue;
         const double k = w.penalty_factor * E * s.area / s.depth;
-        const Vec3 f = k * d * w.normal;
+        double fn = k * d;
+        if (w.damping > 0.0) {
+          // dashpot on the approach/separation speed (half-step velocity), never pulling
+          const Vec3 v(m.v[3 * s.node], m.v[3 * s.node + 1], m.v[3 * s.node + 2]);
+          const double vn = (v - w.velocity).dot(w.normal);
+          const double fd = std::max(-2.0 * w.damping * std::sqrt(k * m.mass[s.node]) * vn, -fn);
+          fn += fd;
+          damping_power += fd * vn;  // <= 0
+        }
+        const Vec3 f = fn * w.normal;
         for (int c = 0; c < 3; ++c) m.f_wall[3 * s.node + c] += f[c];
         w.force -= f;
         contact += 0.5 * k * d * d;
@@ -208,6 +218,7 @@ void Simulation::compute_forces(double step_dt) {
     }
   }
   contact_energy_ = contact;
+  contact_dissipation_ -= damping_power * step_dt;
 
   // 4. accelerations and reactions of constrained dofs
   const Vec3& g = m.settings.gravity;
@@ -232,8 +243,8 @@ std::string Simulation::advice() const {
   std::ostringstream a;
   const SimulationSettings& s = model_.settings;
   if (s.time_step > 0.0 && s.time_step > 0.9 * stable_dt_) {
-    a << "simulation.time_step = " << s.time_step << " s is above the stable step ("
-      << stable_dt_ << " s at the last check): lower it, or remove it to let femdem choose.";
+    a << "simulation.time_step = " << s.time_step << " s is above the stable step (" << stable_dt_
+      << " s at the last check): lower it, or remove it to let femdem choose.";
   } else {
     a << "The step may be too large for this deformation, or the mesh too coarse or distorted: "
          "lower simulation.time_step_safety (now "
@@ -257,8 +268,12 @@ void Simulation::set_time_step() {
       const Vec3 p(m.x[3 * s.node], m.x[3 * s.node + 1], m.x[3 * s.node + 2]);
       for (const auto& w : m.walls) {
         if ((p - w.point).dot(w.normal) > s.depth) continue;
-        const double k = w.penalty_factor * m.materials[b.material].youngs_modulus * s.area / s.depth;
-        dt = std::min(dt, 2.0 / std::sqrt(omega_el * omega_el + k / m.mass[s.node]));
+        const double k =
+            w.penalty_factor * m.materials[b.material].youngs_modulus * s.area / s.depth;
+        // a damping ratio xi shrinks the stable step by sqrt(1 + xi^2) - xi
+        const double xi = w.damping;
+        dt = std::min(dt, 2.0 * (std::sqrt(1.0 + xi * xi) - xi) /
+                              std::sqrt(omega_el * omega_el + k / m.mass[s.node]));
       }
     }
   }
@@ -325,8 +340,8 @@ void Simulation::step(double dt_limit) {
   }
   external_work_ += gravity_work + 0.5 * dt * (power0 + boundary_power());
   const Energies en = energies();
-  max_energy_ = std::max({max_energy_, en.kinetic + en.internal + en.contact,
-                          std::fabs(en.external_work)});
+  max_energy_ =
+      std::max({max_energy_, en.kinetic + en.internal + en.contact, std::fabs(en.external_work)});
   set_time_step();
 }
 
@@ -340,6 +355,7 @@ Energies Simulation::energies() const {
   e.kinetic = ke;
   e.internal = internal_energy_;
   e.plastic_dissipation = plastic_dissipation_;
+  e.contact_dissipation = contact_dissipation_;
   e.contact = contact_energy_;
   e.external_work = external_work_;
   return e;
@@ -405,14 +421,16 @@ BodyState Simulation::body_state(int bi) const {
       Eigen::Matrix3d F = Eigen::Matrix3d::Zero();
       for (int a = 0; a < 10; ++a)
         for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) F(i, j) += m.x[3 * m.conn[e][a] + i] * dN[gp * 30 + 3 * a + j];
+          for (int j = 0; j < 3; ++j)
+            F(i, j) += m.x[3 * m.conn[e][a] + i] * dN[gp * 30 + 3 * a + j];
       vol += w[gp] * F.determinant();
     }
   }
   s.volume = vol;
   for (std::size_t g = 4 * static_cast<std::size_t>(b.first_element);
        g < 4 * static_cast<std::size_t>(b.first_element + b.element_count); ++g)
-    s.max_equivalent_plastic_strain = std::max(s.max_equivalent_plastic_strain, m.gp_state[g].eps_p);
+    s.max_equivalent_plastic_strain =
+        std::max(s.max_equivalent_plastic_strain, m.gp_state[g].eps_p);
   return s;
 }
 
@@ -427,16 +445,18 @@ void Simulation::element_stress(std::vector<double>& stress6, std::vector<double
   for (std::int32_t e = 0; e < ne; ++e) {
     double s[6] = {};
     for (int g = 0; g < 4; ++g)
-      for (int k = 0; k < 6; ++k) s[k] += 0.25 * model_.stress[24 * static_cast<std::size_t>(e) + 6 * g + k];
+      for (int k = 0; k < 6; ++k)
+        s[k] += 0.25 * model_.stress[24 * static_cast<std::size_t>(e) + 6 * g + k];
     for (int k = 0; k < 6; ++k) stress6[6 * e + k] = s[k];
     double ep = 0.0;
-    for (int g = 0; g < 4; ++g) ep += 0.25 * model_.gp_state[4 * static_cast<std::size_t>(e) + g].eps_p;
+    for (int g = 0; g < 4; ++g)
+      ep += 0.25 * model_.gp_state[4 * static_cast<std::size_t>(e) + g].eps_p;
     eq_plastic[e] = ep;
     const double p = -(s[0] + s[1] + s[2]) / 3.0;
     pressure[e] = p;
     const double d0 = s[0] + p, d1 = s[1] + p, d2 = s[2] + p;
-    von_mises[e] = std::sqrt(1.5 * (d0 * d0 + d1 * d1 + d2 * d2 +
-                                    2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5])));
+    von_mises[e] = std::sqrt(
+        1.5 * (d0 * d0 + d1 * d1 + d2 * d2 + 2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5])));
   }
 }
 

@@ -17,9 +17,12 @@ struct Energies {
   double internal = 0.0;             // stored elastic energy
   double plastic_dissipation = 0.0;  // accumulated
   double contact = 0.0;              // penalty energy stored in contacts (walls and bodies)
+  double contact_dissipation = 0.0;  // accumulated work of contact dashpots
   double external_work = 0.0;        // accumulated work of gravity, walls and driven nodes
   // kinetic + internal + plastic + contact - external_work - (its value at t = 0)
-  double balance() const { return kinetic + internal + plastic_dissipation + contact - external_work; }
+  double balance() const {
+    return kinetic + internal + plastic_dissipation + contact + contact_dissipation - external_work;
+  }
 };
 
 struct BodyState {
@@ -49,7 +52,7 @@ class Simulation {
   const Model& model() const { return model_; }
   double time() const { return time_; }
   std::int64_t steps() const { return steps_; }
-  double dt() const { return dt_; }           // step that the next step() will take
+  double dt() const { return dt_; }                // step that the next step() will take
   double stable_dt() const { return stable_dt_; }  // current stable estimate (before safety)
 
   Energies energies() const;
@@ -85,6 +88,7 @@ class Simulation {
   std::vector<CompiledMaterial> compiled_;
   std::vector<double> elem_dissipation_;  // per element, this step
   double plastic_dissipation_ = 0.0;
+  double contact_dissipation_ = 0.0;
   // nodal F-bar (FbarMode::Nodal) work arrays
   bool has_nodal_fbar_ = false;
   std::vector<double> elem_volume_, elem_pressure_weight_, node_J_, node_Q_, node_ref_volume_;

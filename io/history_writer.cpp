@@ -122,6 +122,7 @@ std::vector<std::string> standard_history_columns(std::span<const std::string> b
                                 "internal_energy",
                                 "plastic_dissipation",
                                 "contact_energy",
+                                "contact_dissipation",
                                 "external_work",
                                 "total_energy",
                                 "energy_balance_error"};

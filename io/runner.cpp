@@ -30,7 +30,9 @@ namespace femdem {
 namespace {
 
 std::atomic<int> g_stop_signal{0};
-extern "C" void on_stop_signal(int sig) { g_stop_signal = sig; }
+extern "C" void on_stop_signal(int sig) {
+  g_stop_signal = sig;
+}
 
 // Everything printed also goes to run.log.
 class RunLog {
@@ -65,7 +67,8 @@ std::string format_duration(double s) {
   else if (s < 7200)
     std::snprintf(buf, sizeof buf, "%.0f min %02.0f s", std::floor(s / 60), std::fmod(s, 60));
   else
-    std::snprintf(buf, sizeof buf, "%.0f h %02.0f min", std::floor(s / 3600), std::fmod(s / 60, 60));
+    std::snprintf(buf, sizeof buf, "%.0f h %02.0f min", std::floor(s / 3600),
+                  std::fmod(s / 60, 60));
   return buf;
 }
 
@@ -136,18 +139,21 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
          << scene.resolved_toml << "\n# end of resolved scene\n\n";
     log.file_only(head.str());
   }
-  log.say("femdem " + std::string(FEMDEM_VERSION) + ": " + (m.title.empty() ? scene.stem : m.title));
+  log.say("femdem " + std::string(FEMDEM_VERSION) + ": " +
+          (m.title.empty() ? scene.stem : m.title));
   {
     char buf[256];
     std::snprintf(buf, sizeof buf, "%d bodies, %d nodes, %d TET10 elements, %d walls; %d thread%s",
                   static_cast<int>(m.bodies.size()), m.node_count, m.element_count,
                   static_cast<int>(m.walls.size()), threads, threads == 1 ? "" : "s");
     log.say(buf);
-    std::snprintf(buf, sizeof buf, "stable time step %.4g s, step %.4g s; end time %.4g s (about %.0f steps)",
+    std::snprintf(buf, sizeof buf,
+                  "stable time step %.4g s, step %.4g s; end time %.4g s (about %.0f steps)",
                   sim.stable_dt(), sim.dt(), set.end_time, set.end_time / sim.dt());
     log.say(buf);
     if (set.time_step > 0.0 && set.time_step > sim.stable_dt())
-      log.say("warning: simulation.time_step exceeds the stable step estimate; the run may diverge");
+      log.say(
+          "warning: simulation.time_step exceeds the stable step estimate; the run may diverge");
   }
 
   // Outputs
@@ -167,15 +173,16 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
   auto write_history = [&]() {
     const Energies e = sim.energies();
     row.assign({sim.time(), sim.dt(), e.kinetic, e.internal, e.plastic_dissipation, e.contact,
-                e.external_work, e.balance(), sim.balance_error()});
+                e.contact_dissipation, e.external_work, e.balance(), sim.balance_error()});
     for (std::size_t b = 0; b < m.bodies.size(); ++b) {
       const BodyState s = sim.body_motion(static_cast<int>(b));
-      row.insert(row.end(), {s.com.x(), s.com.y(), s.com.z(), s.vcom.x(), s.vcom.y(), s.vcom.z(),
-                             s.kinetic_energy, s.contact_force.x(), s.contact_force.y(),
-                             s.contact_force.z()});
+      row.insert(row.end(),
+                 {s.com.x(), s.com.y(), s.com.z(), s.vcom.x(), s.vcom.y(), s.vcom.z(),
+                  s.kinetic_energy, s.contact_force.x(), s.contact_force.y(), s.contact_force.z()});
     }
     for (std::size_t w = 0; w < m.walls.size(); ++w) {
-      const Vec3 f = sim.wall_force(static_cast<int>(w)), p = sim.wall_position(static_cast<int>(w));
+      const Vec3 f = sim.wall_force(static_cast<int>(w)),
+                 p = sim.wall_position(static_cast<int>(w));
       row.insert(row.end(), {f.x(), f.y(), f.z(), p.x(), p.y(), p.z()});
     }
     history.write_row(row);
@@ -199,7 +206,12 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
     summary.extra["loop_time_s"] =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
     summary.extra["stable_time_step"] = sim.stable_dt();
-    summary.energy = {e.kinetic, e.internal, e.plastic_dissipation, e.contact, e.external_work,
+    summary.energy = {e.kinetic,
+                      e.internal,
+                      e.plastic_dissipation,
+                      e.contact,
+                      e.contact_dissipation,
+                      e.external_work,
                       sim.balance_error()};
     summary.bodies.clear();
     for (std::size_t b = 0; b < m.bodies.size(); ++b) {
@@ -265,9 +277,10 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
           const double rate = (sim.steps() - steps_at_report) / since;
           const double eta = elapsed * (end - sim.time()) / std::max(sim.time(), 1e-300);
           char buf[200];
-          std::snprintf(buf, sizeof buf, "t = %.4g / %.4g s (%3.0f%%)  %lld steps  %.0f steps/s  ETA %s",
-                        sim.time(), end, 100.0 * sim.time() / end,
-                        static_cast<long long>(sim.steps()), rate, format_duration(eta).c_str());
+          std::snprintf(buf, sizeof buf,
+                        "t = %.4g / %.4g s (%3.0f%%)  %lld steps  %.0f steps/s  ETA %s", sim.time(),
+                        end, 100.0 * sim.time() / end, static_cast<long long>(sim.steps()), rate,
+                        format_duration(eta).c_str());
           if (tty)
             std::printf("\r%s   ", buf), std::fflush(stdout);
           else
@@ -290,8 +303,8 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
   if (g_stop_signal != 0) {
     results.close(false);
     finish_summary(RunStatus::interrupted);
-    log.say("interrupted by signal " + std::to_string(g_stop_signal.load()) + " at t = " +
-            std::to_string(sim.time()) + " s; the frames written so far are readable");
+    log.say("interrupted by signal " + std::to_string(g_stop_signal.load()) +
+            " at t = " + std::to_string(sim.time()) + " s; the frames written so far are readable");
     return 1;
   }
   results.close(true);

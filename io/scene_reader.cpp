@@ -932,7 +932,7 @@ void Reader::read_walls(const toml::table& root, ModelSpec& spec, toml::array& o
   for (const auto& [tp, p] : entries(root, "walls")) {
     const toml::table& t = *tp;
     ++index;
-    check_keys(t, p, {"name", "point", "normal", "velocity", "friction", "penalty_factor"});
+    check_keys(t, p, {"name", "point", "normal", "velocity", "friction", "penalty_factor", "damping"});
     WallSpec w;
     w.name = entry_name(t, p, names, "wall", "wall" + std::to_string(index));
     w.point = opt_vec3(t, "point", p).value_or(Vec3::Zero());
@@ -954,6 +954,11 @@ void Reader::read_walls(const toml::table& root, ModelSpec& spec, toml::array& o
     o.insert_or_assign("velocity", toml::array{w.velocity.x(), w.velocity.y(), w.velocity.z()});
     o.insert_or_assign("friction", w.friction);
     if (w.penalty_factor > 0.0) o.insert_or_assign("penalty_factor", w.penalty_factor);
+    w.damping = number(t, "damping", p, 0.0, &t);
+    if (w.damping < 0.0 || w.damping > 1.0)
+      fail(t.get("damping"), dotted(p, "damping"),
+           "must be a fraction of critical damping in [0, 1], got " + format_number(w.damping));
+    o.insert_or_assign("damping", w.damping);
     out.push_back(std::move(o));
     spec.walls.push_back(w);
   }

@@ -20,6 +20,7 @@ struct EnergySummary {
   double internal = 0.0;
   double plastic_dissipation = 0.0;
   double contact = 0.0;
+  double contact_dissipation = 0.0;
   double external_work = 0.0;
   double balance_error = 0.0;
 };

@@ -27,7 +27,7 @@ RunSummary example() {
   s.threads = 2;
   s.nodes = 35000;
   s.elements = 23000;
-  s.energy = {1.0, 2.0, 3.0, 4.0, 5.0, 1e-4};
+  s.energy = {1.0, 2.0, 3.0, 4.0, 0.5, 5.0, 1e-4};
   BodySummary rod;
   rod.name = "rod";
   rod.mass = 2.3;
@@ -70,11 +70,12 @@ TEST(SummaryWriter, RoundTripKeysAndNull) {
   EXPECT_EQ(j["nodes"], 35000);
   EXPECT_EQ(j["elements"], 23000);
   const json& e = j["energy"];
-  EXPECT_EQ(e.size(), 6u);
+  EXPECT_EQ(e.size(), 7u);
   EXPECT_EQ(e["kinetic"], 1.0);
   EXPECT_EQ(e["internal"], 2.0);
   EXPECT_EQ(e["plastic_dissipation"], 3.0);
   EXPECT_EQ(e["contact"], 4.0);
+  EXPECT_EQ(e["contact_dissipation"], 0.5);
   EXPECT_EQ(e["external_work"], 5.0);
   EXPECT_EQ(e["balance_error"], 1e-4);
 
