@@ -185,6 +185,46 @@ inline void tet10_add_volume_gradient(const double* xe, const double* dNdX, cons
   }
 }
 
+// Artificial bulk viscosity (von Neumann-Richtmyer, in the form of the explicit codes): under
+// volumetric compression at rate D = tr(d) < 0 each Gauss point carries an extra pressure
+//   q = rho l (q_quadratic l D^2 - q_linear c D),
+// which spreads a shock over a few elements instead of letting it ring (the light corner nodes of
+// TET10 ring most). Adds the forces to fe and returns the dissipated power (>= 0); c_eff gets
+// Q + sqrt(Q^2 + c^2) with Q = q_linear c + q_quadratic l |D|, the sound speed the stable step
+// must use.
+inline double tet10_bulk_viscosity(const double* xe, const double* ve, const double* dNdX,
+                                   const double* w, double rho0, double c, double l,
+                                   double q_linear, double q_quadratic, double* fe,
+                                   double& c_eff) {
+  double power = 0.0;
+  c_eff = c;
+  for (int g = 0; g < 4; ++g) {
+    const double* d = dNdX + g * 30;
+    double F[3][3] = {}, Fdot[3][3] = {};
+    for (int a = 0; a < 10; ++a)
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+          F[i][j] += xe[3 * a + i] * d[3 * a + j];
+          Fdot[i][j] += ve[3 * a + i] * d[3 * a + j];
+        }
+    double cof[3][3];
+    detail::cofactor3(F, cof);
+    const double J = detail::det3(F);
+    double trd = 0.0;  // tr(Fdot F^-1) = Fdot : cof / J
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) trd += Fdot[i][j] * cof[i][j];
+    trd /= J;
+    if (trd >= 0.0) continue;
+    const double q = (rho0 / J) * l * (q_quadratic * l * trd * trd - q_linear * c * trd);
+    const double identity[6] = {1, 1, 1, 0, 0, 0};
+    detail::add_force(identity, cof, -w[g] * q, d, fe);  // P = -q J F^-T = -q cof
+    power += -w[g] * J * q * trd;
+    const double Q = q_linear * c + q_quadratic * l * std::fabs(trd);
+    c_eff = std::fmax(c_eff, Q + std::sqrt(Q * Q + c * c));
+  }
+  return power;
+}
+
 // Current volume of the element: sum_g w_g det F_g.
 inline double tet10_current_volume(const double* xe, const double* dNdX, const double* w) {
   double v = 0.0;

@@ -26,6 +26,10 @@ struct SimulationSettings {
   double history_interval = 0.0;  // 0: output_interval / 20
   Vec3 gravity = Vec3::Zero();
   int threads = 0;  // 0: all cores
+  // Artificial bulk viscosity coefficients (0: off); 0.06 and 1.5 are the values explicit codes
+  // use for impacts and shocks.
+  double bulk_viscosity_linear = 0.0;
+  double bulk_viscosity_quadratic = 0.0;
 };
 
 struct BodySpec {

@@ -27,6 +27,7 @@ Simulation::Simulation(Model model) : model_(std::move(model)) {
   elem_energy_.assign(ne, 0.0);
   elem_dt_.assign(ne, 0.0);
   elem_dissipation_.assign(ne, 0.0);
+  elem_viscous_power_.assign(ne, 0.0);
   for (std::int32_t e = 0; e < model_.element_count; ++e)
     has_nodal_fbar_ = has_nodal_fbar_ || model_.element_fbar[e] == FbarMode::Nodal;
   if (has_nodal_fbar_) {
@@ -50,6 +51,7 @@ Simulation::Simulation(Model model) : model_(std::move(model)) {
     c.elastic = ElasticModel{p.lame_lambda(), p.shear_modulus()};
     if (p.model == MaterialModel::VonMises) c.von_mises = make_von_mises(p);
     c.wave_speed = std::sqrt(p.p_wave_modulus() / p.density);
+    c.density = p.density;
     compiled_.push_back(std::move(c));
   }
   // A node no element uses has no mass: hold it still rather than divide by zero.
@@ -67,6 +69,9 @@ void Simulation::compute_forces(double step_dt) {
   const std::int32_t ne = m.element_count;
   const std::int32_t nn = m.node_count;
   const double* x = m.x.data();
+
+  const bool bulk_viscosity =
+      m.settings.bulk_viscosity_linear > 0.0 || m.settings.bulk_viscosity_quadratic > 0.0;
 
   // 0. nodal F-bar: each corner node's volume ratio over the elements around it
   if (has_nodal_fbar_) {
@@ -124,8 +129,18 @@ void Simulation::compute_forces(double step_dt) {
     }
     elem_energy_[e] = r.min_J > 0.0 ? r.energy : -HUGE_VAL;
     elem_dissipation_[e] = r.dissipation;
-    const double cd = cm.wave_speed;
+    double cd = cm.wave_speed;
     const double h = corner_tet_min_altitude(xe);
+    if (bulk_viscosity && r.min_J > 0.0) {
+      double ve[30];
+      for (int a = 0; a < 10; ++a)
+        for (int k = 0; k < 3; ++k) ve[3 * a + k] = m.v[3 * c[a] + k];
+      // l: the element's length across its thinnest direction (corner altitude; TET10 has two
+      // nodes along it)
+      elem_viscous_power_[e] = tet10_bulk_viscosity(
+          xe, ve, dN, w, cm.density, cd, 0.5 * h, m.settings.bulk_viscosity_linear,
+          m.settings.bulk_viscosity_quadratic, fe, cd);
+    }
     elem_dt_[e] = (r.min_J > 0.0 && h > 0.0) ? 2.0 * h / (m.frequency_factor[e] * cd) : -1.0;
   }
 
@@ -186,6 +201,11 @@ void Simulation::compute_forces(double step_dt) {
   double dissipated = 0.0;
   for (std::int32_t e = 0; e < ne; ++e) dissipated += elem_dissipation_[e];
   plastic_dissipation_ += dissipated;
+  if (bulk_viscosity) {
+    double power = 0.0;
+    for (std::int32_t e = 0; e < ne; ++e) power += elem_viscous_power_[e];
+    viscous_dissipation_ += power * step_dt;
+  }
 
   // 3. rigid walls: frictionless penalty on boundary nodes
   std::fill(m.f_wall.begin(), m.f_wall.end(), 0.0);
@@ -356,6 +376,7 @@ Energies Simulation::energies() const {
   e.internal = internal_energy_;
   e.plastic_dissipation = plastic_dissipation_;
   e.contact_dissipation = contact_dissipation_;
+  e.viscous_dissipation = viscous_dissipation_;
   e.contact = contact_energy_;
   e.external_work = external_work_;
   return e;

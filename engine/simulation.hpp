@@ -18,10 +18,12 @@ struct Energies {
   double plastic_dissipation = 0.0;  // accumulated
   double contact = 0.0;              // penalty energy stored in contacts (walls and bodies)
   double contact_dissipation = 0.0;  // accumulated work of contact dashpots
+  double viscous_dissipation = 0.0;  // accumulated work of the artificial bulk viscosity
   double external_work = 0.0;        // accumulated work of gravity, walls and driven nodes
   // kinetic + internal + plastic + contact - external_work - (its value at t = 0)
   double balance() const {
-    return kinetic + internal + plastic_dissipation + contact + contact_dissipation - external_work;
+    return kinetic + internal + plastic_dissipation + contact + contact_dissipation +
+           viscous_dissipation - external_work;
   }
 };
 
@@ -82,6 +84,7 @@ class Simulation {
     ElasticModel elastic;
     VonMises von_mises;
     double wave_speed = 0.0;  // dilatational, sqrt((K + 4G/3) / rho)
+    double density = 0.0;
   };
 
   Model model_;
@@ -89,6 +92,8 @@ class Simulation {
   std::vector<double> elem_dissipation_;  // per element, this step
   double plastic_dissipation_ = 0.0;
   double contact_dissipation_ = 0.0;
+  double viscous_dissipation_ = 0.0;
+  std::vector<double> elem_viscous_power_;  // per element, this step
   // nodal F-bar (FbarMode::Nodal) work arrays
   bool has_nodal_fbar_ = false;
   std::vector<double> elem_volume_, elem_pressure_weight_, node_J_, node_Q_, node_ref_volume_;

@@ -123,6 +123,7 @@ std::vector<std::string> standard_history_columns(std::span<const std::string> b
                                 "plastic_dissipation",
                                 "contact_energy",
                                 "contact_dissipation",
+                                "viscous_dissipation",
                                 "external_work",
                                 "total_energy",
                                 "energy_balance_error"};

@@ -173,7 +173,8 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
   auto write_history = [&]() {
     const Energies e = sim.energies();
     row.assign({sim.time(), sim.dt(), e.kinetic, e.internal, e.plastic_dissipation, e.contact,
-                e.contact_dissipation, e.external_work, e.balance(), sim.balance_error()});
+                e.contact_dissipation, e.viscous_dissipation, e.external_work, e.balance(),
+                sim.balance_error()});
     for (std::size_t b = 0; b < m.bodies.size(); ++b) {
       const BodyState s = sim.body_motion(static_cast<int>(b));
       row.insert(row.end(),

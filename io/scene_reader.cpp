@@ -605,7 +605,7 @@ void Reader::read_simulation(const toml::table& root, ModelSpec& spec, toml::tab
   const std::string p = "simulation";
   check_keys(t, p,
              {"end_time", "time_step_safety", "time_step", "output_interval", "history_interval",
-              "gravity", "threads"});
+              "gravity", "threads", "bulk_viscosity_linear", "bulk_viscosity_quadratic"});
   SimulationSettings& s = spec.simulation;
   s.end_time = positive(t, "end_time", p, std::nullopt, &t);
   s.time_step_safety = positive(t, "time_step_safety", p, s.time_step_safety, &t);
@@ -623,6 +623,13 @@ void Reader::read_simulation(const toml::table& root, ModelSpec& spec, toml::tab
            "must be 0 (all cores) or a positive number of threads, got " + std::to_string(*th));
     s.threads = static_cast<int>(*th);
   }
+  for (const char* key : {"bulk_viscosity_linear", "bulk_viscosity_quadratic"}) {
+    const double v = number(t, key, p, 0.0, &t);
+    if (v < 0.0 || v > 10.0)
+      fail(t.get(key), dotted(p, key), "must lie in [0, 10], got " + format_number(v));
+    (std::string(key) == "bulk_viscosity_linear" ? s.bulk_viscosity_linear
+                                                 : s.bulk_viscosity_quadratic) = v;
+  }
   out.insert_or_assign("end_time", s.end_time);
   out.insert_or_assign("time_step_safety", s.time_step_safety);
   if (s.time_step > 0.0) out.insert_or_assign("time_step", s.time_step);
@@ -630,6 +637,8 @@ void Reader::read_simulation(const toml::table& root, ModelSpec& spec, toml::tab
   out.insert_or_assign("history_interval", s.history_interval);
   out.insert_or_assign("gravity", toml::array{s.gravity.x(), s.gravity.y(), s.gravity.z()});
   out.insert_or_assign("threads", s.threads);
+  out.insert_or_assign("bulk_viscosity_linear", s.bulk_viscosity_linear);
+  out.insert_or_assign("bulk_viscosity_quadratic", s.bulk_viscosity_quadratic);
 }
 
 void Reader::read_materials(const toml::table& root, ModelSpec& spec, toml::array& out) const {

@@ -45,6 +45,7 @@ std::string summary_to_json(const RunSummary& s) {
                      {"plastic_dissipation", s.energy.plastic_dissipation},
                      {"contact", s.energy.contact},
                      {"contact_dissipation", s.energy.contact_dissipation},
+                     {"viscous_dissipation", s.energy.viscous_dissipation},
                      {"external_work", s.energy.external_work},
                      {"balance_error", s.energy.balance_error}};
   Json bodies = Json::object();

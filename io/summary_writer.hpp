@@ -21,6 +21,7 @@ struct EnergySummary {
   double plastic_dissipation = 0.0;
   double contact = 0.0;
   double contact_dissipation = 0.0;
+  double viscous_dissipation = 0.0;
   double external_work = 0.0;
   double balance_error = 0.0;
 };

@@ -137,7 +137,7 @@ TEST(HistoryWriter, KilledWriterLeavesCompleteLines) {
 TEST(HistoryWriter, StandardColumns) {
   const std::vector<std::string> bodies = {"ball", "plate"}, walls = {"floor"};
   const auto c = standard_history_columns(bodies, walls);
-  ASSERT_EQ(c.size(), 10u + 2u * 10u + 6u);
+  ASSERT_EQ(c.size(), 11u + 2u * 10u + 6u);
   const std::vector<std::string> head = {"time",
                                          "dt",
                                          "kinetic_energy",
@@ -145,16 +145,17 @@ TEST(HistoryWriter, StandardColumns) {
                                          "plastic_dissipation",
                                          "contact_energy",
                                          "contact_dissipation",
+                                         "viscous_dissipation",
                                          "external_work",
                                          "total_energy",
                                          "energy_balance_error"};
-  EXPECT_EQ(std::vector<std::string>(c.begin(), c.begin() + 10), head);
+  EXPECT_EQ(std::vector<std::string>(c.begin(), c.begin() + 11), head);
   const std::vector<std::string> ball = {
       "ball.com_x",           "ball.com_y",          "ball.com_z",          "ball.vcom_x",
       "ball.vcom_y",          "ball.vcom_z",         "ball.kinetic_energy", "ball.contact_force_x",
       "ball.contact_force_y", "ball.contact_force_z"};
-  EXPECT_EQ(std::vector<std::string>(c.begin() + 10, c.begin() + 20), ball);
-  EXPECT_EQ(c[20], "plate.com_x");
+  EXPECT_EQ(std::vector<std::string>(c.begin() + 11, c.begin() + 21), ball);
+  EXPECT_EQ(c[21], "plate.com_x");
   const std::vector<std::string> floor = {"floor.force_x",    "floor.force_y",
                                           "floor.force_z",    "floor.position_x",
                                           "floor.position_y", "floor.position_z"};

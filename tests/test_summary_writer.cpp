@@ -27,7 +27,7 @@ RunSummary example() {
   s.threads = 2;
   s.nodes = 35000;
   s.elements = 23000;
-  s.energy = {1.0, 2.0, 3.0, 4.0, 0.5, 5.0, 1e-4};
+  s.energy = {1.0, 2.0, 3.0, 4.0, 0.5, 0.25, 5.0, 1e-4};
   BodySummary rod;
   rod.name = "rod";
   rod.mass = 2.3;
@@ -70,7 +70,7 @@ TEST(SummaryWriter, RoundTripKeysAndNull) {
   EXPECT_EQ(j["nodes"], 35000);
   EXPECT_EQ(j["elements"], 23000);
   const json& e = j["energy"];
-  EXPECT_EQ(e.size(), 7u);
+  EXPECT_EQ(e.size(), 8u);
   EXPECT_EQ(e["kinetic"], 1.0);
   EXPECT_EQ(e["internal"], 2.0);
   EXPECT_EQ(e["plastic_dissipation"], 3.0);
