@@ -60,6 +60,9 @@ void print_summary(const femdem::SceneFile& scene) {
              static_cast<long long>(std::floor(s.end_time / s.output_interval + 1e-9)) + 1);
   fmt::print("  history interval  {:g} s\n", s.history_interval);
   fmt::print("  gravity           {} m/s^2\n", vec(s.gravity));
+  if (s.bulk_viscosity_linear > 0.0 || s.bulk_viscosity_quadratic > 0.0)
+    fmt::print("  bulk viscosity    linear {:g}, quadratic {:g}\n", s.bulk_viscosity_linear,
+               s.bulk_viscosity_quadratic);
   if (s.threads == 0)
     fmt::print("  threads           all cores\n\n");
   else
@@ -69,8 +72,29 @@ void print_summary(const femdem::SceneFile& scene) {
   for (const auto& mat : m.materials) {
     const double cp = std::sqrt(mat.p_wave_modulus() / mat.density);
     const double cs = std::sqrt(mat.shear_modulus() / mat.density);
-    fmt::print("  {}: elastic, density {:g} kg/m^3, E = {:g} Pa, nu = {:g}\n", mat.name,
-               mat.density, mat.youngs_modulus, mat.poisson_ratio);
+    const bool plastic = mat.model == femdem::MaterialModel::VonMises;
+    fmt::print("  {}: {}, density {:g} kg/m^3, E = {:g} Pa, nu = {:g}\n", mat.name,
+               plastic ? "von_mises" : "elastic", mat.density, mat.youngs_modulus,
+               mat.poisson_ratio);
+    if (plastic) {
+      switch (mat.hardening) {
+        case femdem::HardeningLaw::Linear:
+          fmt::print("    yield stress {:g} Pa, linear hardening {:g} Pa\n", mat.yield_stress,
+                     mat.hardening_modulus);
+          break;
+        case femdem::HardeningLaw::Tabulated:
+          fmt::print("    tabulated hardening, {} points, yield stress {:g} Pa\n",
+                     mat.hardening_curve.size(), mat.yield_stress);
+          break;
+        case femdem::HardeningLaw::Swift:
+          fmt::print("    Swift hardening {:g} ({:g} + eps_p)^{:g} Pa, yield stress {:g} Pa\n",
+                     mat.swift_K, mat.swift_eps0, mat.swift_n, mat.yield_stress);
+          break;
+      }
+      if (mat.jc_C > 0.0)
+        fmt::print("    Johnson-Cook rate factor C = {:g}, reference rate {:g} 1/s\n", mat.jc_C,
+                   mat.jc_epsdot0);
+    }
     fmt::print("    K = {:g} Pa, G = {:g} Pa, wave speed {:g} m/s (P), {:g} m/s (S)\n",
                mat.bulk_modulus(), mat.shear_modulus(), cp, cs);
   }
@@ -92,8 +116,12 @@ void print_summary(const femdem::SceneFile& scene) {
     total_nodes += static_cast<long long>(b.mesh.nodes.size());
     total_elements += static_cast<long long>(b.mesh.elements.size());
     total_mass += mass;
-    fmt::print("  {}: material {}, {} nodes, {} elements{}\n", b.name, mat.name,
-               b.mesh.nodes.size(), b.mesh.elements.size(), b.fixed ? ", fixed" : "");
+    const femdem::FbarMode fbar = b.fbar.value_or(mat.model == femdem::MaterialModel::Elastic
+                                                      ? femdem::FbarMode::Off
+                                                      : femdem::FbarMode::VolumeAverage);
+    fmt::print("  {}: material {}, {} nodes, {} elements, F-bar {}{}\n", b.name, mat.name,
+               b.mesh.nodes.size(), b.mesh.elements.size(), femdem::to_string(fbar),
+               b.fixed ? ", fixed" : "");
     fmt::print("    volume {:g} m^3, mass {:g} kg\n", volume, mass);
     fmt::print("    bounding box {} to {} m\n", vec(lo), vec(hi));
     fmt::print("    velocity {} m/s, angular velocity {} rad/s\n", vec(b.velocity),
@@ -106,9 +134,11 @@ void print_summary(const femdem::SceneFile& scene) {
   if (!m.walls.empty()) {
     fmt::print("Walls ({})\n", m.walls.size());
     for (const auto& w : m.walls) {
-      fmt::print("  {}: point {}, normal {}, velocity {} m/s, friction {:g}, penalty factor {:g}\n",
-                 w.name, vec(w.point), vec(w.normal), vec(w.velocity), w.friction,
-                 w.penalty_factor > 0.0 ? w.penalty_factor : m.contact.penalty_factor);
+      fmt::print(
+          "  {}: point {}, normal {}, velocity {} m/s, friction {:g}, penalty factor {:g}, "
+          "damping {:g}\n",
+          w.name, vec(w.point), vec(w.normal), vec(w.velocity), w.friction,
+          w.penalty_factor > 0.0 ? w.penalty_factor : m.contact.penalty_factor, w.damping);
     }
     fmt::print("\n");
   }
