@@ -232,9 +232,11 @@ struct ResultsWriter::Impl {
       s += fd.node_centred ? "Node" : "Cell";
       s += "\">\n";
       s += "          <DataItem ItemType=\"HyperSlab\" Dimensions=\"1 " + rows +
-           (vec ? " " + c : "") + "\" Type=\"HyperSlab\">\n";
+           (vec ? " " + c : "") + "\" Type=\"HyperSlab\" NumberType=\"Float\" Precision=\"" +
+           precision + "\">\n";  // the Xdmf3 readers need the type on the slab too
       s += "            <DataItem Dimensions=\"3 " + std::string(vec ? "3" : "2") +
-           "\" Format=\"XML\">" + k + (vec ? " 0 0 1 1 1 1 " : " 0 1 1 1 ") + rows +
+           "\" NumberType=\"UInt\" Precision=\"4\" Format=\"XML\">" + k +
+           (vec ? " 0 0 1 1 1 1 " : " 0 1 1 1 ") + rows +
            (vec ? " " + c : "") + "</DataItem>\n";
       s += "            <DataItem Dimensions=\"" + f + " " + rows + (vec ? " " + c : "") +
            "\" NumberType=\"Float\" Precision=\"" + precision +
