@@ -9,6 +9,7 @@
 #include "engine/element_kernel.hpp"
 #include "engine/simulation.hpp"
 #include "io/mesh_generators.hpp"
+#include "materials/von_mises.hpp"
 
 using namespace femdem;
 
@@ -65,6 +66,43 @@ void ElementKernel(benchmark::State& state) {
       benchmark::Counter(static_cast<double>(m.element_count), benchmark::Counter::kIsIterationInvariantRate);
 }
 
+// The same kernel with von Mises plasticity (every Gauss point yielding: sigma_y is far below
+// the stress of the imposed deformation) and an F-bar variant: range(1) = 0 off,
+// 1 volume_average, 2 centroid, 3 elastic Hencky for reference in the same run.
+void ElementKernelPlastic(benchmark::State& state) {
+  Model m = build_model(box_spec(size_for(state.range(0))));
+  omp_set_num_threads(1);
+  for (int n = 0; n < m.node_count; ++n)
+    for (int k = 0; k < 3; ++k) m.x[3 * n + k] = m.X[3 * n + k] * (1.0 + 0.01 * (k + 1)) + 0.003 * m.X[3 * n + (k + 1) % 3];
+  MaterialParams p = m.materials[0];
+  p.model = MaterialModel::VonMises;
+  p.yield_stress = 50e6;
+  p.hardening_modulus = 1e9;
+  const VonMises vm = make_von_mises(p);
+  const ElasticModel el{p.lame_lambda(), p.shear_modulus()};
+  const FbarMode modes[3] = {FbarMode::Off, FbarMode::VolumeAverage, FbarMode::Centroid};
+  const int variant = static_cast<int>(state.range(1));
+  std::vector<double> fe(30 * static_cast<std::size_t>(m.element_count));
+  for (auto _ : state) {
+    for (int e = 0; e < m.element_count; ++e) {
+      double xe[30];
+      for (int a = 0; a < 10; ++a)
+        for (int k = 0; k < 3; ++k) xe[3 * a + k] = m.x[3 * m.conn[e][a] + k];
+      const std::size_t es = static_cast<std::size_t>(e);
+      GaussPointState st[4];  // fresh state: every call does the full return mapping
+      if (variant == 3)
+        tet10_internal_forces(xe, &m.dNdX[120 * es], &m.gauss_weight[4 * es], el, FbarMode::Off, st,
+                              1e-7, &fe[30 * es], &m.stress[24 * es]);
+      else
+        tet10_internal_forces(xe, &m.dNdX[120 * es], &m.gauss_weight[4 * es], vm, modes[variant],
+                              st, 1e-7, &fe[30 * es], &m.stress[24 * es]);
+    }
+    benchmark::DoNotOptimize(fe.data());
+  }
+  state.counters["element_updates_per_s"] =
+      benchmark::Counter(static_cast<double>(m.element_count), benchmark::Counter::kIsIterationInvariantRate);
+}
+
 void Step(benchmark::State& state) {
   omp_set_num_threads(static_cast<int>(state.range(1)));
   Simulation sim(build_model(box_spec(size_for(state.range(0)))));
@@ -77,5 +115,6 @@ void Step(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(ElementKernel)->ArgsProduct({{10000, 100000}, {1, 2}})->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(ElementKernelPlastic)->ArgsProduct({{10000}, {3, 0, 1, 2}})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(Step)->ArgsProduct({{10000, 100000}, {1, 2}})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();
