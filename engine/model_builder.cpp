@@ -98,8 +98,7 @@ Model build_model(const ModelSpec& spec) {
     body.name = bs.name;
     body.material = bs.material;
     body.fixed = bs.fixed;
-    body.fbar = bs.fbar.value_or(mat.model == MaterialModel::Elastic ? FbarMode::Off
-                                                                     : FbarMode::VolumeAverage);
+    body.fbar = bs.fbar.value_or(default_fbar_mode(mat));
     body.first_node = node0;
     body.node_count = static_cast<std::int32_t>(bs.mesh.nodes.size());
     body.first_element = elem0;

@@ -925,11 +925,8 @@ void Reader::read_bodies(const toml::table& root, ModelSpec& spec, toml::array& 
         "angular_velocity",
         toml::array{b.angular_velocity.x(), b.angular_velocity.y(), b.angular_velocity.z()});
     o.insert_or_assign("fixed", b.fixed);
-    {
-      const bool elastic = spec.materials[b.material].model == MaterialModel::Elastic;
-      o.insert_or_assign("fbar", to_string(b.fbar.value_or(elastic ? FbarMode::Off
-                                                                   : FbarMode::VolumeAverage)));
-    }
+    o.insert_or_assign("fbar",
+                       to_string(b.fbar.value_or(default_fbar_mode(spec.materials[b.material]))));
     out.push_back(std::move(o));
     spec.bodies.push_back(std::move(b));
   }

@@ -116,9 +116,7 @@ void print_summary(const femdem::SceneFile& scene) {
     total_nodes += static_cast<long long>(b.mesh.nodes.size());
     total_elements += static_cast<long long>(b.mesh.elements.size());
     total_mass += mass;
-    const femdem::FbarMode fbar = b.fbar.value_or(mat.model == femdem::MaterialModel::Elastic
-                                                      ? femdem::FbarMode::Off
-                                                      : femdem::FbarMode::VolumeAverage);
+    const femdem::FbarMode fbar = b.fbar.value_or(femdem::default_fbar_mode(mat));
     fmt::print("  {}: material {}, {} nodes, {} elements, F-bar {}{}\n", b.name, mat.name,
                b.mesh.nodes.size(), b.mesh.elements.size(), femdem::to_string(fbar),
                b.fixed ? ", fixed" : "");
