@@ -52,6 +52,15 @@ inline void cofactor3(const double F[3][3], double cof[3][3]) {
   cof[2][2] = F[0][0] * F[1][1] - F[0][1] * F[1][0];
 }
 
+// G = sum_a u_a (x) dN_a/dX over the 10 nodes: F from positions, its rate from velocities.
+inline void nodal_gradient(const double* u, const double* d, double G[3][3]) {
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) G[i][j] = 0.0;
+  for (int a = 0; a < 10; ++a)
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) G[i][j] += u[3 * a + i] * d[3 * a + j];
+}
+
 // f_a += scale * (S cof) dN_a, S symmetric (6), for the 10 nodes
 inline void add_force(const double S6[6], const double cof[3][3], double scale, const double* d,
                       double* fe) {
@@ -82,13 +91,10 @@ inline ElementResult tet10_internal_forces(const double* xe, const double* dNdX,
   ElementResult res;
   res.min_J = HUGE_VAL;
   for (int i = 0; i < 30; ++i) fe[i] = 0.0;
-  double F[4][3][3] = {};
+  double F[4][3][3];
   double J[4];
   for (int g = 0; g < 4; ++g) {
-    const double* d = dNdX + g * 30;
-    for (int a = 0; a < 10; ++a)
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) F[g][i][j] += xe[3 * a + i] * d[3 * a + j];
+    detail::nodal_gradient(xe, dNdX + g * 30, F[g]);
     J[g] = detail::det3(F[g]);
     res.min_J = std::fmin(res.min_J, J[g]);
   }
@@ -175,10 +181,8 @@ inline void tet10_add_volume_gradient(const double* xe, const double* dNdX, cons
   const double identity[6] = {1, 1, 1, 0, 0, 0};
   for (int g = 0; g < 4; ++g) {
     const double* d = dNdX + g * 30;
-    double F[3][3] = {};
-    for (int a = 0; a < 10; ++a)
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) F[i][j] += xe[3 * a + i] * d[3 * a + j];
+    double F[3][3];
+    detail::nodal_gradient(xe, d, F);
     double cof[3][3];
     detail::cofactor3(F, cof);
     detail::add_force(identity, cof, s * w[g], d, fe);
@@ -200,13 +204,9 @@ inline double tet10_bulk_viscosity(const double* xe, const double* ve, const dou
   c_eff = c;
   for (int g = 0; g < 4; ++g) {
     const double* d = dNdX + g * 30;
-    double F[3][3] = {}, Fdot[3][3] = {};
-    for (int a = 0; a < 10; ++a)
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) {
-          F[i][j] += xe[3 * a + i] * d[3 * a + j];
-          Fdot[i][j] += ve[3 * a + i] * d[3 * a + j];
-        }
+    double F[3][3], Fdot[3][3];
+    detail::nodal_gradient(xe, d, F);
+    detail::nodal_gradient(ve, d, Fdot);
     double cof[3][3];
     detail::cofactor3(F, cof);
     const double J = detail::det3(F);
@@ -230,10 +230,8 @@ inline double tet10_current_volume(const double* xe, const double* dNdX, const d
   double v = 0.0;
   for (int g = 0; g < 4; ++g) {
     const double* d = dNdX + g * 30;
-    double F[3][3] = {};
-    for (int a = 0; a < 10; ++a)
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) F[i][j] += xe[3 * a + i] * d[3 * a + j];
+    double F[3][3];
+    detail::nodal_gradient(xe, d, F);
     v += w[g] * detail::det3(F);
   }
   return v;
