@@ -17,6 +17,7 @@
 #include "femdem_version.hpp"
 #include "io/runner.hpp"
 #include "io/scene_reader.hpp"
+#include "io/strain_path.hpp"
 
 namespace {
 
@@ -179,6 +180,44 @@ std::string default_out_dir(const femdem::SceneFile& scene) {
 
 }  // namespace
 
+// `femdem check SCENE --material NAME --strain-path FILE`: the stress path of one material point
+// under a prescribed deformation history, as CSV on standard output.
+int material_point(const femdem::SceneFile& scene, const std::string& name,
+                   const std::string& path_file, int substeps) {
+  const femdem::MaterialParams* mat = nullptr;
+  std::vector<std::string> names;
+  for (const auto& m : scene.model.materials) {
+    names.push_back(m.name);
+    if (m.name == name) mat = &m;
+  }
+  if (!mat) {
+    std::string all;
+    for (const auto& n : names) all += (all.empty() ? "" : ", ") + n;
+    throw femdem::InputError("no material '" + name + "' in the scene (materials: " + all + ")",
+                             scene.path, 0, 0, "--material");
+  }
+  const std::vector<femdem::F3> targets = femdem::read_strain_path(path_file);
+  const auto steps = femdem::drive_deformation(*mat, targets, substeps);
+  fmt::print(
+      "step,target,F11,F12,F13,F21,F22,F23,F31,F32,F33,sigma_xx,sigma_yy,sigma_zz,sigma_xy,"
+      "sigma_yz,sigma_xz,von_mises,pressure,eq_plastic_strain,elastic_energy,dissipation\n");
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    const auto& s = steps[i];
+    const double* q = s.sigma;
+    const double p = -(q[0] + q[1] + q[2]) / 3.0;
+    const double vm = std::sqrt(1.5 * ((q[0] + p) * (q[0] + p) + (q[1] + p) * (q[1] + p) +
+                                       (q[2] + p) * (q[2] + p) +
+                                       2.0 * (q[3] * q[3] + q[4] * q[4] + q[5] * q[5])));
+    fmt::print("{},{}", i + 1, s.segment + 1);
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) fmt::print(",{:.17g}", s.F[r][c]);
+    for (int k = 0; k < 6; ++k) fmt::print(",{:.17g}", q[k]);
+    fmt::print(",{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", vm, p, s.eps_p, s.elastic_energy,
+               s.dissipation);
+  }
+  return kExitOk;
+}
+
 int main(int argc, char** argv) {
   CLI::App app{"femdem: explicit FEM-DEM simulation of deformable bodies (ten-node tetrahedra)",
                "femdem"};
@@ -207,6 +246,15 @@ int main(int argc, char** argv) {
   check->add_option("scene", scene_path, "Scene file (TOML)")->required();
   check->add_option("--set", overrides, "Override a scene value: KEY=VALUE (repeatable)")
       ->allow_extra_args(false);
+  std::string material_name, strain_path;
+  int substeps = 10;
+  check->add_option("--material", material_name,
+                    "With --strain-path: drive this material of the scene through a homogeneous "
+                    "deformation history and print the stress path as CSV");
+  check->add_option("--strain-path", strain_path,
+                    "File of target deformation gradients, 9 numbers (row-major F) per line");
+  check->add_option("--substeps", substeps, "Increments between two targets (default 10)")
+      ->check(CLI::PositiveNumber);
 
   try {
     app.parse(argc, argv);
@@ -218,6 +266,10 @@ int main(int argc, char** argv) {
   try {
     if (check->parsed()) {
       const femdem::SceneFile scene = femdem::load_scene(scene_path, overrides);
+      if (material_name.empty() != strain_path.empty())
+        throw femdem::InputError("--material and --strain-path go together");
+      if (!material_name.empty())
+        return material_point(scene, material_name, strain_path, substeps);
       print_summary(scene);
       return kExitOk;
     }
