@@ -45,6 +45,28 @@ inline std::array<std::array<double, 3>, kNodes> shape_derivatives(const std::ar
   return d;
 }
 
+// The 8 linear sub-tetrahedra of a TET10 cut at its mid-edge nodes (4 at the corners, 4 around
+// the 6-8 diagonal of the inner octahedron), each positively oriented.
+inline constexpr int kSubTets[8][4] = {{0, 4, 6, 7}, {1, 5, 4, 8}, {2, 6, 5, 9}, {3, 7, 9, 8},
+                                       {6, 8, 4, 5}, {6, 8, 5, 9}, {6, 8, 9, 7}, {6, 8, 7, 4}};
+
+// Sum of the sub-tetrahedra volumes of 10 nodes (30 coordinates).
+inline double subtet_volume(const double* x) {
+  double v6 = 0.0;
+  for (const auto& t : kSubTets) {
+    const double* a = x + 3 * t[0];
+    const double* b = x + 3 * t[1];
+    const double* c = x + 3 * t[2];
+    const double* d = x + 3 * t[3];
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const double w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+    v6 += u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
+          u[2] * (v[0] * w[1] - v[1] * w[0]);
+  }
+  return v6 / 6.0;
+}
+
 // HRZ lumping of the consistent mass of a straight-sided TET10: the consistent diagonal is
 // 6/420 m (corner) and 32/420 m (mid-edge); scaled to sum to m this gives m/36 and 4m/27
 // (row-sum lumping would give negative corner masses).

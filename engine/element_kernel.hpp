@@ -87,7 +87,8 @@ inline ElementResult tet10_internal_forces(const double* xe, const double* dNdX,
                                            const Material& material, FbarMode fbar,
                                            GaussPointState* state, double dt, double* fe,
                                            double* sigma, const double* corner_J = nullptr,
-                                           double* pressure_weight = nullptr) {
+                                           double* pressure_weight = nullptr,
+                                           double subtet_volume0 = 0.0) {
   ElementResult res;
   res.min_J = HUGE_VAL;
   for (int i = 0; i < 30; ++i) fe[i] = 0.0;
@@ -106,6 +107,12 @@ inline ElementResult tet10_internal_forces(const double* xe, const double* dNdX,
   if (fbar == FbarMode::VolumeAverage) {
     for (int g = 0; g < 4; ++g) J0 += w[g] * J[g];
     J0 /= vol0;
+  } else if (fbar == FbarMode::SubTet) {
+    J0 = tet10::subtet_volume(xe) / subtet_volume0;
+    if (!(J0 > 0.0)) {
+      res.min_J = std::fmin(res.min_J, J0);
+      return res;
+    }
   } else if (fbar == FbarMode::Centroid) {
     for (int g = 0; g < 4; ++g)
       for (int i = 0; i < 3; ++i)
@@ -163,6 +170,31 @@ inline ElementResult tet10_internal_forces(const double* xe, const double* dNdX,
       detail::cofactor3(F[h], cof);
       detail::add_force(identity, cof, pressure_work * w[h] / (vol0 * J0), dNdX + h * 30, fe);
     }
+  } else if (fbar == FbarMode::SubTet) {
+    // dJ0 = d(sum_s V_s) / V0: each sub-tet's volume gradient on its 4 nodes
+    const double s = pressure_work / (J0 * subtet_volume0 * 6.0);
+    for (const auto& t : tet10::kSubTets) {
+      const double* a = xe + 3 * t[0];
+      const double* b = xe + 3 * t[1];
+      const double* c = xe + 3 * t[2];
+      const double* d = xe + 3 * t[3];
+      double gb[3], gc[3], gd[3];
+      const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+      const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+      const double w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+      gb[0] = v[1] * w[2] - v[2] * w[1], gb[1] = v[2] * w[0] - v[0] * w[2],
+      gb[2] = v[0] * w[1] - v[1] * w[0];
+      gc[0] = w[1] * u[2] - w[2] * u[1], gc[1] = w[2] * u[0] - w[0] * u[2],
+      gc[2] = w[0] * u[1] - w[1] * u[0];
+      gd[0] = u[1] * v[2] - u[2] * v[1], gd[1] = u[2] * v[0] - u[0] * v[2],
+      gd[2] = u[0] * v[1] - u[1] * v[0];
+      for (int k = 0; k < 3; ++k) {
+        fe[3 * t[1] + k] += s * gb[k];
+        fe[3 * t[2] + k] += s * gc[k];
+        fe[3 * t[3] + k] += s * gd[k];
+        fe[3 * t[0] + k] -= s * (gb[k] + gc[k] + gd[k]);
+      }
+    }
   } else if (fbar == FbarMode::Centroid) {
     // J0 = det(Fc), Fc = sum_h F_h / 4: dJ0/J0 = Fc^-T : sum_h dF_h / 4
     double cof[3][3];
@@ -198,8 +230,7 @@ inline void tet10_add_volume_gradient(const double* xe, const double* dNdX, cons
 // must use.
 inline double tet10_bulk_viscosity(const double* xe, const double* ve, const double* dNdX,
                                    const double* w, double rho0, double c, double l,
-                                   double q_linear, double q_quadratic, double* fe,
-                                   double& c_eff) {
+                                   double q_linear, double q_quadratic, double* fe, double& c_eff) {
   double power = 0.0;
   c_eff = c;
   for (int g = 0; g < 4; ++g) {

@@ -79,6 +79,7 @@ struct Model {
   std::vector<double> frequency_factor;
 
   std::vector<FbarMode> element_fbar;
+  std::vector<double> subtet_volume0;  // reference volume of the 8 sub-tets (FbarMode::SubTet)
 
   // --- Gauss-point state (4 per element) ---
   std::vector<GaussPointState> gp_state;      // plastic deformation and equivalent plastic strain

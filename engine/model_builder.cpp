@@ -88,6 +88,7 @@ Model build_model(const ModelSpec& spec) {
   m.stress.assign(static_cast<std::size_t>(ne) * 24, 0.0);
   m.gp_state.assign(static_cast<std::size_t>(ne) * 4, GaussPointState{});
   m.element_fbar.assign(ne, FbarMode::Off);
+  m.subtet_volume0.assign(ne, 0.0);
   m.strain_energy_density.assign(static_cast<std::size_t>(ne) * 4, 0.0);
 
   std::int32_t node0 = 0, elem0 = 0;
@@ -129,6 +130,12 @@ Model build_model(const ModelSpec& spec) {
       m.element_body[ge] = static_cast<std::int32_t>(bi);
       m.element_material[ge] = bs.material;
       m.element_fbar[ge] = body.fbar;
+      {
+        double X0[30];
+        for (int a = 0; a < 10; ++a)
+          for (int k = 0; k < 3; ++k) X0[3 * a + k] = bs.mesh.nodes[local[a]][k];
+        m.subtet_volume0[ge] = tet10::subtet_volume(X0);
+      }
       double min_det = 0.0, vol = 0.0;
       double* dN = m.dNdX.data() + static_cast<std::size_t>(ge) * 120;
       double* w = m.gauss_weight.data() + static_cast<std::size_t>(ge) * 4;

@@ -121,10 +121,12 @@ void Simulation::compute_forces(double step_dt) {
     ElementResult r;
     switch (cm.model) {  // one well-predicted branch per element, none per Gauss point
       case MaterialModel::Elastic:
-        r = tet10_internal_forces(xe, dN, w, cm.elastic, fbar, st, step_dt, fe, sig, cJ, q);
+        r = tet10_internal_forces(xe, dN, w, cm.elastic, fbar, st, step_dt, fe, sig, cJ, q,
+                                  m.subtet_volume0[e]);
         break;
       case MaterialModel::VonMises:
-        r = tet10_internal_forces(xe, dN, w, cm.von_mises, fbar, st, step_dt, fe, sig, cJ, q);
+        r = tet10_internal_forces(xe, dN, w, cm.von_mises, fbar, st, step_dt, fe, sig, cJ, q,
+                                  m.subtet_volume0[e]);
         break;
     }
     elem_energy_[e] = r.min_J > 0.0 ? r.energy : -HUGE_VAL;
@@ -137,9 +139,9 @@ void Simulation::compute_forces(double step_dt) {
         for (int k = 0; k < 3; ++k) ve[3 * a + k] = m.v[3 * c[a] + k];
       // l: the element's length across its thinnest direction (corner altitude; TET10 has two
       // nodes along it)
-      elem_viscous_power_[e] = tet10_bulk_viscosity(
-          xe, ve, dN, w, cm.density, cd, 0.5 * h, m.settings.bulk_viscosity_linear,
-          m.settings.bulk_viscosity_quadratic, fe, cd);
+      elem_viscous_power_[e] = tet10_bulk_viscosity(xe, ve, dN, w, cm.density, cd, 0.5 * h,
+                                                    m.settings.bulk_viscosity_linear,
+                                                    m.settings.bulk_viscosity_quadratic, fe, cd);
     }
     elem_dt_[e] = (r.min_J > 0.0 && h > 0.0) ? 2.0 * h / (m.frequency_factor[e] * cd) : -1.0;
   }

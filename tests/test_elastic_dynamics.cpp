@@ -125,5 +125,5 @@ TEST_P(OscillatingCube, ConservesEnergy) {
 
 INSTANTIATE_TEST_SUITE_P(Fbar, OscillatingCube,
                          ::testing::Values(FbarMode::Off, FbarMode::VolumeAverage,
-                                           FbarMode::Centroid, FbarMode::Nodal),
+                                           FbarMode::Centroid, FbarMode::Nodal, FbarMode::SubTet),
                          [](const auto& info) { return std::string(to_string(info.param)); });

@@ -68,9 +68,9 @@ Evaluated evaluate(const Model& m, const Eigen::Matrix3d& F0) {
       const Vec3 x = F0 * Vec3(m.X[3 * n], m.X[3 * n + 1], m.X[3 * n + 2]) + Vec3(0.3, -0.2, 0.1);
       for (int k = 0; k < 3; ++k) xe[3 * a + k] = x[k];
     }
-    const auto r = tet10_elastic_forces(xe, &m.dNdX[120 * e], &m.gauss_weight[4 * e],
-                                        mat.lame_lambda(), mat.shear_modulus(), fe,
-                                        &out.stress[24 * e]);
+    const auto r =
+        tet10_elastic_forces(xe, &m.dNdX[120 * e], &m.gauss_weight[4 * e], mat.lame_lambda(),
+                             mat.shear_modulus(), fe, &out.stress[24 * e]);
     out.energy += r.energy;
     for (int a = 0; a < 10; ++a)
       for (int k = 0; k < 3; ++k) out.force[3 * m.conn[e][a] + k] += fe[3 * a + k];
@@ -125,7 +125,8 @@ TEST(Tet10, PatchTestHomogeneousFiniteDeformation) {
   EXPECT_LT(finterior, 1e-9 * fmax);
   // boundary forces add up to the traction resultant: zero in total
   Vec3 sum = Vec3::Zero();
-  for (int n = 0; n < m.node_count; ++n) sum += Vec3(ev.force[3 * n], ev.force[3 * n + 1], ev.force[3 * n + 2]);
+  for (int n = 0; n < m.node_count; ++n)
+    sum += Vec3(ev.force[3 * n], ev.force[3 * n + 1], ev.force[3 * n + 2]);
   EXPECT_LT(sum.norm(), 1e-9 * fmax);
 }
 
@@ -164,9 +165,10 @@ TEST(SymmetricEigen3, MatchesEigenIncludingRepeatedEigenvalues) {
   int cases = 0;
   for (int trial = 0; trial < 3000; ++trial) {
     Eigen::Vector3d lam(1.0 + 0.3 * u(rng), 1.0 + 0.3 * u(rng), 1.0 + 0.3 * u(rng));
-    if (trial % 3 == 1) lam[1] = lam[0] * (1.0 + 1e-9 * u(rng));          // nearly double
+    if (trial % 3 == 1) lam[1] = lam[0] * (1.0 + 1e-9 * u(rng));            // nearly double
     if (trial % 3 == 2) lam[1] = lam[2] = lam[0] * (1.0 + 1e-12 * u(rng));  // nearly triple
-    const Eigen::Matrix3d Q = Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized().toRotationMatrix();
+    const Eigen::Matrix3d Q =
+        Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized().toRotationMatrix();
     const Eigen::Matrix3d A = Q * lam.asDiagonal() * Q.transpose();
     const double s[6] = {A(0, 0), A(1, 1), A(2, 2), A(0, 1), A(1, 2), A(0, 2)};
     const SymEig3 r = symmetric_eigen3(s);
@@ -219,10 +221,13 @@ TEST(Tet10, ElementFrequencyBoundsTheMesh) {
           xp[3 * a + k] = m.X[i] + eps * u[i];
           xm[3 * a + k] = m.X[i] - eps * u[i];
         }
-      tet10_elastic_forces(xp, &m.dNdX[120 * e], &m.gauss_weight[4 * e], mat.lame_lambda(), mat.shear_modulus(), fp, sig);
-      tet10_elastic_forces(xm, &m.dNdX[120 * e], &m.gauss_weight[4 * e], mat.lame_lambda(), mat.shear_modulus(), fm, sig);
+      tet10_elastic_forces(xp, &m.dNdX[120 * e], &m.gauss_weight[4 * e], mat.lame_lambda(),
+                           mat.shear_modulus(), fp, sig);
+      tet10_elastic_forces(xm, &m.dNdX[120 * e], &m.gauss_weight[4 * e], mat.lame_lambda(),
+                           mat.shear_modulus(), fm, sig);
       for (int a = 0; a < 10; ++a)
-        for (int k = 0; k < 3; ++k) f[3 * m.conn[e][a] + k] += (fp[3 * a + k] - fm[3 * a + k]) / (2 * eps);
+        for (int k = 0; k < 3; ++k)
+          f[3 * m.conn[e][a] + k] += (fp[3 * a + k] - fm[3 * a + k]) / (2 * eps);
     }
     return f;
   };
@@ -274,17 +279,18 @@ TEST(Tet10, FbarIsExactUnderHomogeneousDeformationAndConservative) {
   double f_off[30], s_off[24];
   GaussPointState st[4];
   tet10_internal_forces(xe, dN, w, elastic, FbarMode::Off, st, 0.0, f_off, s_off);
-  for (FbarMode mode : {FbarMode::VolumeAverage, FbarMode::Centroid}) {
+  const double V0 = m.subtet_volume0[e];
+  for (FbarMode mode : {FbarMode::VolumeAverage, FbarMode::Centroid, FbarMode::SubTet}) {
     double f[30], s[24];
     GaussPointState st2[4];
-    tet10_internal_forces(xe, dN, w, elastic, mode, st2, 0.0, f, s);
+    tet10_internal_forces(xe, dN, w, elastic, mode, st2, 0.0, f, s, nullptr, nullptr, V0);
     for (int i = 0; i < 30; ++i) EXPECT_NEAR(f[i], f_off[i], 1e-12 * 210e9);
     for (int i = 0; i < 24; ++i) EXPECT_NEAR(s[i], s_off[i], 1e-12 * 210e9);
     // a non-homogeneous state: forces = dW/dx
     double y[30];
     for (int i = 0; i < 30; ++i) y[i] = xe[i] + 0.01 * std::sin(1.7 * i + 0.3);
     double fy[30], sy[24];
-    tet10_internal_forces(y, dN, w, elastic, mode, st2, 0.0, fy, sy);
+    tet10_internal_forces(y, dN, w, elastic, mode, st2, 0.0, fy, sy, nullptr, nullptr, V0);
     double fmax = 0.0;
     for (int i = 0; i < 30; ++i) fmax = std::max(fmax, std::fabs(fy[i]));
     for (int i = 0; i < 30; ++i) {
@@ -294,9 +300,14 @@ TEST(Tet10, FbarIsExactUnderHomogeneousDeformationAndConservative) {
       std::copy(y, y + 30, ym);
       yp[i] += h;
       ym[i] -= h;
-      const double Wp = tet10_internal_forces(yp, dN, w, elastic, mode, st2, 0.0, ft, st_).energy;
-      const double Wm = tet10_internal_forces(ym, dN, w, elastic, mode, st2, 0.0, ft, st_).energy;
-      EXPECT_NEAR((Wp - Wm) / (2 * h), fy[i], 2e-6 * fmax) << "dof " << i << " mode " << to_string(mode);
+      const double Wp =
+          tet10_internal_forces(yp, dN, w, elastic, mode, st2, 0.0, ft, st_, nullptr, nullptr, V0)
+              .energy;
+      const double Wm =
+          tet10_internal_forces(ym, dN, w, elastic, mode, st2, 0.0, ft, st_, nullptr, nullptr, V0)
+              .energy;
+      EXPECT_NEAR((Wp - Wm) / (2 * h), fy[i], 2e-6 * fmax)
+          << "dof " << i << " mode " << to_string(mode);
     }
   }
 }
