@@ -207,13 +207,14 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
     summary.extra["loop_time_s"] =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
     summary.extra["stable_time_step"] = sim.stable_dt();
-    summary.energy = {e.kinetic,
-                      e.internal,
-                      e.plastic_dissipation,
-                      e.contact,
-                      e.contact_dissipation,
-                      e.external_work,
-                      sim.balance_error()};
+    summary.energy = {.kinetic = e.kinetic,
+                      .internal = e.internal,
+                      .plastic_dissipation = e.plastic_dissipation,
+                      .contact = e.contact,
+                      .contact_dissipation = e.contact_dissipation,
+                      .viscous_dissipation = e.viscous_dissipation,
+                      .external_work = e.external_work,
+                      .balance_error = sim.balance_error()};
     summary.bodies.clear();
     for (std::size_t b = 0; b < m.bodies.size(); ++b) {
       const BodyState s = sim.body_state(static_cast<int>(b));

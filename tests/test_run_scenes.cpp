@@ -125,6 +125,12 @@ TEST(Scenes, ElasticSphereRebounds) {
   EXPECT_LE(e["com"].get<double>(), 1.0 + 1e-3);  // no energy created
   EXPECT_LT(std::fabs(s["energy"]["balance_error"].get<double>()), 1e-3);
   EXPECT_GT(s["bodies"]["ball"]["vcom"][2].get<double>(), 0.9);  // moving up
+  // summary.json's energies are the last history row's
+  auto h = read_history(out / "history.csv");
+  EXPECT_EQ(s["energy"]["balance_error"].get<double>(), h["energy_balance_error"].back());
+  EXPECT_EQ(s["energy"]["external_work"].get<double>(), h["external_work"].back());
+  EXPECT_EQ(s["energy"]["kinetic"].get<double>(), h["kinetic_energy"].back());
+  EXPECT_EQ(s["energy"]["viscous_dissipation"].get<double>(), h["viscous_dissipation"].back());
 }
 
 // The same run with 1 and 2 threads gives the same bits (deterministic gather).
