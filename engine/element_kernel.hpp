@@ -125,7 +125,7 @@ inline ElementResult tet10_internal_forces(const double* xe, const double* dNdX,
   }
 
   double J0g[4] = {J0, J0, J0, J0};
-  if (fbar == FbarMode::Nodal) {
+  if (fbar == FbarMode::Nodal && corner_J && pressure_weight) {
     for (int g = 0; g < 4; ++g) {
       J0g[g] = 0.0;
       for (int c = 0; c < 4; ++c)
@@ -157,7 +157,7 @@ inline ElementResult tet10_internal_forces(const double* xe, const double* dNdX,
                              r.tau[3],     r.tau[4],     r.tau[5]};
       detail::add_force(dev, cof, w[g] / J[g], dNdX + g * 30, fe);
       pressure_work += w[g] * p;
-      if (fbar == FbarMode::Nodal)
+      if (fbar == FbarMode::Nodal && pressure_weight)
         for (int c = 0; c < 4; ++c)
           pressure_weight[c] += w[g] * p * (c == g ? tet10::kGaussA : tet10::kGaussB) / J0g[g];
     }

@@ -106,6 +106,7 @@ class Simulation {
   std::vector<double> elem_energy_;  // per element
   std::vector<double> elem_dt_;      // per element stable step
   std::vector<double> reaction_;     // 3 per node, at constrained dofs
+  std::vector<std::size_t> driven_dofs_;  // dofs with a prescribed velocity
   double internal_energy_ = 0.0;
   double contact_energy_ = 0.0;
   double external_work_ = 0.0;

@@ -9,29 +9,19 @@
 #include <fstream>
 #include <string>
 
+#include "support/run_command.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int code = -1;
-  std::string output;  // stdout and stderr
-};
+using Result = femdem::test::CommandResult;
 
 // Runs `femdem ARGS` in folder `cwd` (default: the test folder) through the shell.
-Result femdem(const std::string& args, const fs::path& cwd = {}) {
+Result run_femdem(const std::string& args, const fs::path& cwd = {}) {
   std::string cmd;
   if (!cwd.empty()) cmd = "cd '" + cwd.string() + "' && ";
-  cmd += std::string("'") + FEMDEM_EXE + "' " + args + " 2>&1";
-  Result r;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf;
-  std::size_t n;
-  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.output.append(buf.data(), n);
-  const int status = pclose(pipe);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return femdem::test::run_command(cmd + "'" + FEMDEM_EXE + "' " + args);
 }
 
 fs::path tmp_dir(const std::string& name) {
@@ -74,18 +64,18 @@ bool contains(const std::string& s, const std::string& part) {
 }
 
 TEST(Cli, Version) {
-  const Result r = femdem("--version");
+  const Result r = run_femdem("--version");
   EXPECT_EQ(r.code, 0) << r.output;
   EXPECT_TRUE(contains(r.output, "femdem ")) << r.output;
   EXPECT_TRUE(contains(r.output, "git")) << r.output;
 }
 
 TEST(Cli, Help) {
-  const Result r = femdem("--help");
+  const Result r = run_femdem("--help");
   EXPECT_EQ(r.code, 0) << r.output;
   EXPECT_TRUE(contains(r.output, "run")) << r.output;
   EXPECT_TRUE(contains(r.output, "check")) << r.output;
-  const Result sub = femdem("run --help");
+  const Result sub = run_femdem("run --help");
   EXPECT_EQ(sub.code, 0) << sub.output;
   EXPECT_TRUE(contains(sub.output, "--out")) << sub.output;
   EXPECT_TRUE(contains(sub.output, "--set")) << sub.output;
@@ -94,22 +84,22 @@ TEST(Cli, Help) {
 }
 
 TEST(Cli, BadUsageExitsWithTwo) {
-  EXPECT_EQ(femdem("--bogus").code, 2);
-  EXPECT_EQ(femdem("").code, 2);                       // no subcommand
-  EXPECT_EQ(femdem("frobnicate scene.toml").code, 2);  // unknown subcommand
-  EXPECT_EQ(femdem("check").code, 2);                  // no scene
-  EXPECT_EQ(femdem("run").code, 2);
+  EXPECT_EQ(run_femdem("--bogus").code, 2);
+  EXPECT_EQ(run_femdem("").code, 2);                       // no subcommand
+  EXPECT_EQ(run_femdem("frobnicate scene.toml").code, 2);  // unknown subcommand
+  EXPECT_EQ(run_femdem("check").code, 2);                  // no scene
+  EXPECT_EQ(run_femdem("run").code, 2);
   const fs::path dir = tmp_dir("usage");
   const std::string scene = write_file(dir / "cube.toml", kGoodScene);
-  EXPECT_EQ(femdem("check '" + scene + "' --bogus").code, 2);
-  EXPECT_EQ(femdem("run '" + scene + "' --threads -1").code, 2);
-  EXPECT_EQ(femdem("run '" + scene + "' --threads many").code, 2);
+  EXPECT_EQ(run_femdem("check '" + scene + "' --bogus").code, 2);
+  EXPECT_EQ(run_femdem("run '" + scene + "' --threads -1").code, 2);
+  EXPECT_EQ(run_femdem("run '" + scene + "' --threads many").code, 2);
 }
 
 TEST(Cli, CheckGoodSceneSummarisesAndWritesNothing) {
   const fs::path dir = tmp_dir("good");
   write_file(dir / "cube.toml", kGoodScene);
-  const Result r = femdem("check cube.toml", dir);
+  const Result r = run_femdem("check cube.toml", dir);
   EXPECT_EQ(r.code, 0) << r.output;
   EXPECT_TRUE(contains(r.output, "CLI test: a steel cube on a floor")) << r.output;
   EXPECT_TRUE(contains(r.output, "mass 8 kg")) << r.output;  // 8000 kg/m^3 * 1e-3 m^3
@@ -125,12 +115,12 @@ TEST(Cli, CheckGoodSceneSummarisesAndWritesNothing) {
 TEST(Cli, CheckWithOverrides) {
   const fs::path dir = tmp_dir("overrides");
   const std::string scene = write_file(dir / "cube.toml", kGoodScene);
-  const Result ok = femdem("check '" + scene + "' --set materials.steel.density=4000 --set " +
-                           "'bodies.cube.velocity=[0, 0, -1]'");
+  const Result ok = run_femdem("check '" + scene + "' --set materials.steel.density=4000 --set " +
+                               "'bodies.cube.velocity=[0, 0, -1]'");
   EXPECT_EQ(ok.code, 0) << ok.output;
   EXPECT_TRUE(contains(ok.output, "mass 4 kg")) << ok.output;
   EXPECT_TRUE(contains(ok.output, "velocity [0, 0, -1] m/s")) << ok.output;
-  const Result bad = femdem("check '" + scene + "' --set bodies.cub.velocity=[0,0,1]");
+  const Result bad = run_femdem("check '" + scene + "' --set bodies.cub.velocity=[0,0,1]");
   EXPECT_EQ(bad.code, 2) << bad.output;
   EXPECT_TRUE(contains(bad.output, "--set bodies.cub.velocity=[0,0,1]")) << bad.output;
   EXPECT_TRUE(contains(bad.output, "did you mean 'cube'?")) << bad.output;
@@ -165,7 +155,7 @@ TEST(Cli, BadScenesExitWithTwoNamingFileLineAndKey) {
     SCOPED_TRACE(c.name);
     write_file(dir / (c.name + ".toml"), c.text);
     for (const char* cmd : {"check", "run"}) {
-      const Result r = femdem(std::string(cmd) + " " + c.name + ".toml", dir);
+      const Result r = run_femdem(std::string(cmd) + " " + c.name + ".toml", dir);
       EXPECT_EQ(r.code, 2) << r.output;
       EXPECT_TRUE(contains(r.output, "error: " + c.expected)) << r.output;
     }
@@ -177,7 +167,7 @@ TEST(Cli, BadScenesExitWithTwoNamingFileLineAndKey) {
 TEST(Cli, MissingSceneFileExitsWithTwo) {
   const fs::path dir = tmp_dir("missing");
   for (const char* cmd : {"check", "run"}) {
-    const Result r = femdem(std::string(cmd) + " no_such_scene.toml", dir);
+    const Result r = run_femdem(std::string(cmd) + " no_such_scene.toml", dir);
     EXPECT_EQ(r.code, 2) << r.output;
     EXPECT_TRUE(contains(r.output, "no_such_scene.toml")) << r.output;
   }

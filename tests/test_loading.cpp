@@ -66,9 +66,11 @@ TEST(Loading, PrescribedVelocityWorkIsAccounted) {
   Simulation sim(build_model(s));
   while (sim.time() < 2e-3) sim.step();
   const Model& m = sim.model();
-  for (int n = 0; n < m.node_count; ++n)
-    if (std::fabs(m.X[3 * n + 2] - 0.1) < 1e-12)
+  for (int n = 0; n < m.node_count; ++n) {
+    if (std::fabs(m.X[3 * n + 2] - 0.1) < 1e-12) {
       ASSERT_NEAR(m.x[3 * n + 2] - m.X[3 * n + 2], -0.5 * sim.time(), 1e-12);
+    }
+  }
   const Energies e = sim.energies();
   std::printf("driven block: external work %.4g J, elastic %.4g J, kinetic %.4g J, balance %.2e\n",
               e.external_work, e.internal, e.kinetic, sim.balance_error());

@@ -12,17 +12,14 @@
 #include <sstream>
 #include <string>
 
+#include "support/run_command.hpp"
+
 namespace fs = std::filesystem;
 
-static std::string run(const std::string& cmd, int& code) {
-  std::string out;
-  FILE* pipe = popen((cmd + " 2>&1").c_str(), "r");
-  std::array<char, 4096> buf;
-  std::size_t n;
-  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), n);
-  const int status = pclose(pipe);
-  code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return out;
+std::string run(const std::string& cmd, int& code) {
+  const femdem::test::CommandResult r = femdem::test::run_command(cmd);
+  code = r.code;
+  return r.output;
 }
 
 TEST(ParaView, OpensResultsAsTimeSeries) {

@@ -20,26 +20,16 @@
 #include <thread>
 #include <vector>
 
+#include "support/run_command.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int code = -1;
-  std::string output;
-};
+using Result = femdem::test::CommandResult;
 
-Result femdem(const std::string& args) {
-  const std::string cmd = std::string("'") + FEMDEM_EXE + "' " + args + " 2>&1";
-  Result r;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf;
-  std::size_t n;
-  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.output.append(buf.data(), n);
-  const int status = pclose(pipe);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+Result run_femdem(const std::string& args) {
+  return femdem::test::run_command(std::string("'") + FEMDEM_EXE + "' " + args);
 }
 
 fs::path out_dir(const std::string& name) {
@@ -83,7 +73,8 @@ nlohmann::json read_json(const fs::path& path) {
 // 10 periods of the scene.
 TEST(Scenes, BarVibration) {
   const fs::path out = out_dir("bar");
-  const Result r = femdem("run '" + scene("bar_vibration.toml") + "' --quiet --out '" + out.string() + "'");
+  const Result r =
+      run_femdem("run '" + scene("bar_vibration.toml") + "' --quiet --out '" + out.string() + "'");
   ASSERT_EQ(r.code, 0) << r.output;
   auto h = read_history(out / "history.csv");
   const auto& t = h["time"];
@@ -113,14 +104,15 @@ TEST(Scenes, BarVibration) {
 // left behind is in elastic vibrations). Coarse mesh to keep the test short.
 TEST(Scenes, ElasticSphereRebounds) {
   const fs::path out = out_dir("drop");
-  const Result r = femdem("run '" + scene("sphere_drop.toml") + "' --quiet --out '" + out.string() +
-                          "' --set bodies.ball.mesh.element_size=2.5e-3 --set simulation.end_time=60e-6");
+  const Result r =
+      run_femdem("run '" + scene("sphere_drop.toml") + "' --quiet --out '" + out.string() +
+                 "' --set bodies.ball.mesh.element_size=2.5e-3 --set simulation.end_time=60e-6");
   ASSERT_EQ(r.code, 0) << r.output;
   const auto s = read_json(out / "summary.json");
   const auto& e = s["bodies"]["ball"]["coefficient_of_restitution"];
   ASSERT_FALSE(e.is_null()) << "the ball must have touched the wall and left it";
-  std::printf("sphere drop: restitution %.4f (com), %.4f (kinetic energy)\n", e["com"].get<double>(),
-              e["kinetic_energy"].get<double>());
+  std::printf("sphere drop: restitution %.4f (com), %.4f (kinetic energy)\n",
+              e["com"].get<double>(), e["kinetic_energy"].get<double>());
   EXPECT_NEAR(e["com"].get<double>(), 1.0, 0.02);
   EXPECT_LE(e["com"].get<double>(), 1.0 + 1e-3);  // no energy created
   EXPECT_LT(std::fabs(s["energy"]["balance_error"].get<double>()), 1e-3);
@@ -135,10 +127,17 @@ TEST(Scenes, ElasticSphereRebounds) {
 
 // The same run with 1 and 2 threads gives the same bits (deterministic gather).
 TEST(Scenes, OneAndTwoThreadsGiveIdenticalResults) {
-  std::string args = "' --quiet --set bodies.ball.mesh.element_size=2.5e-3 --set simulation.end_time=15e-6";
+  std::string args =
+      "' --quiet --set bodies.ball.mesh.element_size=2.5e-3 --set simulation.end_time=15e-6";
   const fs::path o1 = out_dir("threads1"), o2 = out_dir("threads2");
-  ASSERT_EQ(femdem("run '" + scene("sphere_drop.toml") + "' --threads 1 --out '" + o1.string() + args).code, 0);
-  ASSERT_EQ(femdem("run '" + scene("sphere_drop.toml") + "' --threads 2 --out '" + o2.string() + args).code, 0);
+  ASSERT_EQ(
+      run_femdem("run '" + scene("sphere_drop.toml") + "' --threads 1 --out '" + o1.string() + args)
+          .code,
+      0);
+  ASSERT_EQ(
+      run_femdem("run '" + scene("sphere_drop.toml") + "' --threads 2 --out '" + o2.string() + args)
+          .code,
+      0);
   auto s1 = read_json(o1 / "summary.json"), s2 = read_json(o2 / "summary.json");
   EXPECT_EQ(s1["threads"], 1);
   EXPECT_EQ(s2["threads"], 2);
@@ -154,8 +153,8 @@ TEST(Scenes, OneAndTwoThreadsGiveIdenticalResults) {
 // that says "unstable", and results.h5 closed as incomplete.
 TEST(Scenes, DivergingRunStopsWithCode3) {
   const fs::path out = out_dir("unstable");
-  const Result r = femdem("run '" + scene("bar_vibration.toml") + "' --quiet --out '" + out.string() +
-                          "' --set simulation.time_step=0.05");
+  const Result r = run_femdem("run '" + scene("bar_vibration.toml") + "' --quiet --out '" +
+                              out.string() + "' --set simulation.time_step=0.05");
   EXPECT_EQ(r.code, 3) << r.output;
   EXPECT_NE(r.output.find("time_step"), std::string::npos) << r.output;
   const auto s = read_json(out / "summary.json");
@@ -188,7 +187,9 @@ TEST(Scenes, KilledRunLeavesReadableFrames) {
     std::ifstream x(out / "results.xdmf");
     std::string text((std::istreambuf_iterator<char>(x)), std::istreambuf_iterator<char>());
     frames = 0;
-    for (std::size_t p = text.find("<Time "); p != std::string::npos; p = text.find("<Time ", p + 1)) ++frames;
+    for (std::size_t p = text.find("<Time "); p != std::string::npos;
+         p = text.find("<Time ", p + 1))
+      ++frames;
   }
   kill(pid, SIGKILL);
   int status = 0;
