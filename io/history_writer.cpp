@@ -4,6 +4,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -87,19 +88,39 @@ void HistoryWriter::write_row(std::span<const double> values) {
 void HistoryWriter::flush() {
   last_flush_ = std::chrono::steady_clock::now();
   if (fd_ < 0 || buffer_.empty()) return;
-  // One write() for all complete lines; loop only for the (rare) short write.
-  const char* p = buffer_.data();
-  std::size_t left = buffer_.size();
-  while (left > 0) {
-    const ssize_t n = ::write(fd_, p, left);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      const int err = errno;
-      buffer_.erase(0, buffer_.size() - left);
-      throw std::runtime_error("cannot write '" + path_.string() + "': " + std::strerror(err));
+  // Linux copies a write() into the page cache one page at a time and lets SIGKILL stop it only
+  // between pages, so a write that stays inside one page of the file lands whole or not at all.
+  // The buffer is therefore handed over in pieces that end on a line break and, whenever the
+  // lines allow it, do not cross a page boundary of the file: a killed run leaves whole lines.
+  // (A single row longer than a page cannot be protected this way; it is still written whole
+  // unless the kill lands inside it.)
+  static const std::size_t page = [] {
+    const long s = ::sysconf(_SC_PAGESIZE);
+    return s > 0 ? static_cast<std::size_t>(s) : std::size_t{4096};
+  }();
+  std::size_t done = 0;
+  while (done < buffer_.size()) {
+    const std::size_t room = page - static_cast<std::size_t>(file_size_ % page);
+    const std::size_t window_end = std::min(buffer_.size(), done + room);
+    std::size_t end = buffer_.rfind('\n', window_end - 1);
+    if (end == std::string::npos || end < done) {
+      // Not even one whole line fits before the page boundary: write the next line whole (it
+      // crosses the boundary) rather than split it; the following pieces realign to pages.
+      end = buffer_.find('\n', done);
+      if (end == std::string::npos) end = buffer_.size() - 1;
     }
-    p += n;
-    left -= static_cast<std::size_t>(n);
+    const std::size_t chunk_end = end + 1;
+    while (done < chunk_end) {
+      const ssize_t n = ::write(fd_, buffer_.data() + done, chunk_end - done);
+      if (n < 0) {
+        if (errno == EINTR) continue;
+        const int err = errno;
+        buffer_.erase(0, done);
+        throw std::runtime_error("cannot write '" + path_.string() + "': " + std::strerror(err));
+      }
+      done += static_cast<std::size_t>(n);
+      file_size_ += static_cast<std::uint64_t>(n);
+    }
   }
   buffer_.clear();
 }

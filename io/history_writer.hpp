@@ -3,12 +3,13 @@
 // history.csv: one row per history sample, header on the first line, every value written with
 // the shortest representation that reads back to the same double (std::to_chars).
 //
-// Crash behaviour: rows are collected in memory as complete lines and handed to the kernel in a
-// single write() call when `flush_interval_s` of wall time has passed since the last flush (or
-// the buffer exceeds 1 MiB, or flush()/destruction). A run killed at any moment therefore
-// leaves a file of complete lines, losing at most the last `flush_interval_s` of rows. (The one
-// theoretical exception: Linux may cut a single write() that spans pages if SIGKILL arrives in
-// the middle of it; a reader that drops a last line without '\n' is safe in every case.)
+// Crash behaviour: rows are collected in memory as complete lines and handed to the kernel when
+// `flush_interval_s` of wall time has passed since the last flush (or the buffer exceeds 1 MiB,
+// or flush()/destruction), in write() calls that end on a line break and do not cross a page
+// boundary of the file. Linux lets SIGKILL interrupt a write() only between pages, so a run
+// killed at any moment leaves a file of complete lines, losing at most the last
+// `flush_interval_s` of rows. (Only a single row longer than a page, about 200 columns, can be
+// cut; a reader that drops a last line without '\n' is safe in every case.)
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
@@ -47,6 +48,7 @@ class HistoryWriter {
   std::chrono::steady_clock::time_point last_flush_;
   std::string buffer_;
   std::int64_t rows_ = 0;
+  std::uint64_t file_size_ = 0;  // bytes handed to the kernel so far
   int fd_ = -1;
 };
 

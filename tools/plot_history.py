@@ -16,12 +16,15 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 def read_history(path):
     with open(path, newline="") as f:
-        rows = list(csv.reader(f))
+        text = f.read()
+    if not text.endswith("\n"):
+        text = text[: text.rfind("\n") + 1]  # a killed run's torn last line
+    rows = list(csv.reader(text.splitlines()))
     header, data = rows[0], rows[1:]
     cols = {name: [] for name in header}
     for row in data:
         if len(row) != len(header):
-            continue  # a killed run's last line
+            continue
         for name, value in zip(header, row):
             cols[name].append(float(value))
     return cols
