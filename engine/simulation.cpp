@@ -61,10 +61,13 @@ Simulation::Simulation(Model model) : model_(std::move(model)) {
   // the few driven dofs, so the work of the supports does not scan every node each step
   for (std::size_t i = 0; i < 3 * nn; ++i)
     if (model_.dof_mode[i] == 2) driven_dofs_.push_back(i);
+  body_added_mass_.assign(model_.bodies.size(), 0.0);
+  if (model_.settings.mass_scaling_time_step > 0.0) elem_mass_scale_.assign(ne, 1.0);
   compute_forces(0.0);
+  // mass scaling at t = 0 keeps the given initial velocities: it is part of the initial state
+  set_time_step();
   initial_balance_ = energies().balance();
   max_energy_ = std::fabs(initial_balance_);
-  set_time_step();
 }
 
 void Simulation::compute_forces(double step_dt) {
@@ -278,10 +281,52 @@ std::string Simulation::advice() const {
   return a.str();
 }
 
+void Simulation::scale_masses(double element_dt_needed) {
+  Model& m = model_;
+  const bool conserve_momentum = steps_ > 0;
+  for (std::int32_t e = 0; e < m.element_count; ++e) {
+    double& s = elem_mass_scale_[e];
+    const double dt_e = elem_dt_[e] * std::sqrt(s);  // the step bound scales with sqrt(mass)
+    if (!(dt_e > 0.0) || dt_e >= element_dt_needed) continue;
+    // a hair above the exact factor so that round-off cannot leave the bound just below
+    const double s_new = s * (element_dt_needed / dt_e) * (element_dt_needed / dt_e) * (1 + 1e-12);
+    const double* w = m.gauss_weight.data() + 4 * static_cast<std::size_t>(e);
+    const double added =
+        (s_new - s) * m.materials[m.element_material[e]].density * (w[0] + w[1] + w[2] + w[3]);
+    s = s_new;
+    body_added_mass_[m.element_body[e]] += added;
+    const Tet10& c = m.conn[e];
+    for (int a = 0; a < 10; ++a) {
+      const std::int32_t n = c[a];
+      const double m_old = m.mass[n];
+      const double m_new = m_old + added * (a < 4 ? tet10::kHrzCorner : tet10::kHrzMidEdge);
+      const double ratio = m_old / m_new;
+      for (int k = 0; k < 3; ++k) {
+        const std::size_t i = 3 * static_cast<std::size_t>(n) + k;
+        if (m.dof_mode[i] != 0) continue;  // held or driven: its velocity is prescribed
+        accel_[i] *= ratio;                // the same force now moves more mass
+        if (conserve_momentum) {
+          // a free node gaining mass keeps its momentum and gives up kinetic energy
+          mass_scaling_dissipation_ += 0.5 * m_old * m.v[i] * m.v[i] * (1.0 - ratio);
+          m.v[i] *= ratio;
+        }
+      }
+      m.mass[n] = m_new;
+    }
+  }
+}
+
 void Simulation::set_time_step() {
   const Model& m = model_;
+  if (!elem_mass_scale_.empty())
+    scale_masses(m.settings.mass_scaling_time_step / m.settings.time_step_safety);
   double dt_el = HUGE_VAL;
-  for (double d : elem_dt_) dt_el = std::min(dt_el, d);
+  if (elem_mass_scale_.empty()) {
+    for (double d : elem_dt_) dt_el = std::min(dt_el, d);
+  } else {
+    for (std::size_t e = 0; e < elem_dt_.size(); ++e)
+      dt_el = std::min(dt_el, elem_dt_[e] * std::sqrt(elem_mass_scale_[e]));
+  }
   double dt = dt_el;
   // Wall contact adds a spring k to boundary nodes near a wall; bound the node's frequency by
   // the element's plus the spring's (omega^2 <= omega_e^2 + k/m).
@@ -378,6 +423,7 @@ Energies Simulation::energies() const {
   e.plastic_dissipation = plastic_dissipation_;
   e.contact_dissipation = contact_dissipation_;
   e.viscous_dissipation = viscous_dissipation_;
+  e.mass_scaling_dissipation = mass_scaling_dissipation_;
   e.contact = contact_energy_;
   e.external_work = external_work_;
   return e;
@@ -393,6 +439,7 @@ BodyState Simulation::body_motion(int bi) const {
   const Body& b = m.bodies[bi];
   BodyState s;
   s.mass = b.mass;
+  s.added_mass = body_added_mass_[bi];
   double msum = 0.0;
   for (std::int32_t n = b.first_node; n < b.first_node + b.node_count; ++n) {
     const double mn = m.mass[n];
@@ -417,6 +464,7 @@ BodyState Simulation::body_state(int bi) const {
   const Body& b = m.bodies[bi];
   BodyState s;
   s.mass = b.mass;
+  s.added_mass = body_added_mass_[bi];
   s.bbox_min = Vec3::Constant(HUGE_VAL);
   s.bbox_max = Vec3::Constant(-HUGE_VAL);
   double msum = 0.0;

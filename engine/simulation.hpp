@@ -19,17 +19,20 @@ struct Energies {
   double contact = 0.0;              // penalty energy stored in contacts (walls and bodies)
   double contact_dissipation = 0.0;  // accumulated work of contact dashpots
   double viscous_dissipation = 0.0;  // accumulated work of the artificial bulk viscosity
-  double external_work = 0.0;        // accumulated work of gravity, walls and driven nodes
+  // Kinetic energy given up when mass scaling adds mass to a moving node at constant momentum.
+  double mass_scaling_dissipation = 0.0;
+  double external_work = 0.0;  // accumulated work of gravity, walls and driven nodes
   // kinetic + internal + plastic + contact - external_work - (its value at t = 0)
   double balance() const {
     return kinetic + internal + plastic_dissipation + contact + contact_dissipation +
-           viscous_dissipation - external_work;
+           viscous_dissipation + mass_scaling_dissipation - external_work;
   }
 };
 
 struct BodyState {
-  double mass = 0.0;
-  double volume = 0.0;  // current, from the deformed elements
+  double mass = 0.0;        // rho V0, without mass added by mass scaling
+  double added_mass = 0.0;  // by mass scaling so far
+  double volume = 0.0;      // current, from the deformed elements
   Vec3 com = Vec3::Zero();
   Vec3 vcom = Vec3::Zero();
   double kinetic_energy = 0.0;
@@ -76,6 +79,9 @@ class Simulation {
   // advances the material state and updates energies and element steps
   void compute_forces(double step_dt);
   void set_time_step();
+  // Selective mass scaling: raises the mass of elements whose stable step is below
+  // `element_dt_needed` (conserving nodal momentum once the run has started).
+  void scale_masses(double element_dt_needed);
   std::string advice() const;  // what to change when the run diverges
 
   // A material's return mapping, built once from its parameters.
@@ -93,6 +99,9 @@ class Simulation {
   double plastic_dissipation_ = 0.0;
   double contact_dissipation_ = 0.0;
   double viscous_dissipation_ = 0.0;
+  double mass_scaling_dissipation_ = 0.0;
+  std::vector<double> elem_mass_scale_;     // >= 1 per element; empty when mass scaling is off
+  std::vector<double> body_added_mass_;     // per body
   std::vector<double> elem_viscous_power_;  // per element, this step
   // nodal F-bar (FbarMode::Nodal) work arrays
   bool has_nodal_fbar_ = false;
@@ -101,11 +110,11 @@ class Simulation {
   std::int64_t steps_ = 0;
   double dt_ = 0.0;
   double stable_dt_ = 0.0;
-  std::vector<double> accel_;        // 3 per node
-  std::vector<double> elem_force_;   // 30 per element
-  std::vector<double> elem_energy_;  // per element
-  std::vector<double> elem_dt_;      // per element stable step
-  std::vector<double> reaction_;     // 3 per node, at constrained dofs
+  std::vector<double> accel_;             // 3 per node
+  std::vector<double> elem_force_;        // 30 per element
+  std::vector<double> elem_energy_;       // per element
+  std::vector<double> elem_dt_;           // per element stable step
+  std::vector<double> reaction_;          // 3 per node, at constrained dofs
   std::vector<std::size_t> driven_dofs_;  // dofs with a prescribed velocity
   double internal_energy_ = 0.0;
   double contact_energy_ = 0.0;

@@ -145,6 +145,7 @@ std::vector<std::string> standard_history_columns(std::span<const std::string> b
                                 "contact_energy",
                                 "contact_dissipation",
                                 "viscous_dissipation",
+                                "mass_scaling_dissipation",
                                 "external_work",
                                 "total_energy",
                                 "energy_balance_error"};

@@ -53,9 +53,10 @@ class HistoryWriter {
 };
 
 // The standard columns of SCENE_FORMAT.md: time, dt, kinetic_energy, internal_energy,
-// plastic_dissipation, contact_energy, external_work, total_energy, energy_balance_error; per
-// body <body>.com_x/y/z, .vcom_x/y/z, .kinetic_energy, .contact_force_x/y/z; per wall
-// <wall>.force_x/y/z, .position_x/y/z. (9 + 10 per body + 6 per wall columns, in that order.)
+// plastic_dissipation, contact_energy, contact_dissipation, viscous_dissipation,
+// mass_scaling_dissipation, external_work, total_energy, energy_balance_error; per body
+// <body>.com_x/y/z, .vcom_x/y/z, .kinetic_energy, .contact_force_x/y/z; per wall
+// <wall>.force_x/y/z, .position_x/y/z. (12 + 10 per body + 6 per wall columns, in that order.)
 std::vector<std::string> standard_history_columns(std::span<const std::string> bodies,
                                                   std::span<const std::string> walls);
 

@@ -173,8 +173,8 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
   auto write_history = [&]() {
     const Energies e = sim.energies();
     row.assign({sim.time(), sim.dt(), e.kinetic, e.internal, e.plastic_dissipation, e.contact,
-                e.contact_dissipation, e.viscous_dissipation, e.external_work, e.balance(),
-                sim.balance_error()});
+                e.contact_dissipation, e.viscous_dissipation, e.mass_scaling_dissipation,
+                e.external_work, e.balance(), sim.balance_error()});
     for (std::size_t b = 0; b < m.bodies.size(); ++b) {
       const BodyState s = sim.body_motion(static_cast<int>(b));
       row.insert(row.end(),
@@ -213,6 +213,7 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
                       .contact = e.contact,
                       .contact_dissipation = e.contact_dissipation,
                       .viscous_dissipation = e.viscous_dissipation,
+                      .mass_scaling_dissipation = e.mass_scaling_dissipation,
                       .external_work = e.external_work,
                       .balance_error = sim.balance_error()};
     summary.bodies.clear();
@@ -221,6 +222,7 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
       BodySummary bs;
       bs.name = m.bodies[b].name;
       bs.mass = s.mass;
+      bs.added_mass = s.added_mass;
       bs.volume = s.volume;
       bs.com = {s.com.x(), s.com.y(), s.com.z()};
       bs.vcom = {s.vcom.x(), s.vcom.y(), s.vcom.z()};
@@ -318,6 +320,17 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
                 static_cast<double>(sim.steps()) * m.element_count / summary.wall_time_s,
                 100.0 * sim.balance_error());
   log.say(buf);
+  if (set.mass_scaling_time_step > 0.0) {
+    for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+      const BodyState s = sim.body_motion(static_cast<int>(b));
+      const double fraction = s.added_mass / s.mass;
+      std::snprintf(buf, sizeof buf,
+                    "%smass scaling added %.3g kg to body '%s' (%.3g %% of its mass)",
+                    fraction > 0.01 ? "warning: " : "", s.added_mass, m.bodies[b].name.c_str(),
+                    100.0 * fraction);
+      log.say(buf);
+    }
+  }
   log.say("results in " + out.string() + ": results.xdmf (ParaView), history.csv, summary.json");
   return 0;
 }

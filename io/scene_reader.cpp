@@ -605,7 +605,8 @@ void Reader::read_simulation(const toml::table& root, ModelSpec& spec, toml::tab
   const std::string p = "simulation";
   check_keys(t, p,
              {"end_time", "time_step_safety", "time_step", "output_interval", "history_interval",
-              "gravity", "threads", "bulk_viscosity_linear", "bulk_viscosity_quadratic"});
+              "gravity", "threads", "bulk_viscosity_linear", "bulk_viscosity_quadratic",
+              "mass_scaling_time_step"});
   SimulationSettings& s = spec.simulation;
   s.end_time = positive(t, "end_time", p, std::nullopt, &t);
   s.time_step_safety = positive(t, "time_step_safety", p, s.time_step_safety, &t);
@@ -630,6 +631,11 @@ void Reader::read_simulation(const toml::table& root, ModelSpec& spec, toml::tab
     (std::string(key) == "bulk_viscosity_linear" ? s.bulk_viscosity_linear
                                                  : s.bulk_viscosity_quadratic) = v;
   }
+  s.mass_scaling_time_step = positive(t, "mass_scaling_time_step", p, 0.0, &t);
+  if (s.mass_scaling_time_step > 0.0 && s.time_step > 0.0)
+    fail(t.get("mass_scaling_time_step"), "simulation.mass_scaling_time_step",
+         "works with the automatic step only: remove simulation.time_step (the step is then "
+         "never below mass_scaling_time_step)");
   out.insert_or_assign("end_time", s.end_time);
   out.insert_or_assign("time_step_safety", s.time_step_safety);
   if (s.time_step > 0.0) out.insert_or_assign("time_step", s.time_step);
@@ -639,6 +645,8 @@ void Reader::read_simulation(const toml::table& root, ModelSpec& spec, toml::tab
   out.insert_or_assign("threads", s.threads);
   out.insert_or_assign("bulk_viscosity_linear", s.bulk_viscosity_linear);
   out.insert_or_assign("bulk_viscosity_quadratic", s.bulk_viscosity_quadratic);
+  if (s.mass_scaling_time_step > 0.0)
+    out.insert_or_assign("mass_scaling_time_step", s.mass_scaling_time_step);
 }
 
 void Reader::read_materials(const toml::table& root, ModelSpec& spec, toml::array& out) const {
@@ -662,9 +670,9 @@ void Reader::read_materials(const toml::table& root, ModelSpec& spec, toml::arra
     }
     std::vector<std::string> keys = {"name", "model", "density", "youngs_modulus", "poisson_ratio"};
     if (model == "von_mises")
-      keys.insert(keys.end(), {"yield_stress", "hardening_modulus", "hardening_curve", "swift_k",
-                               "swift_eps0", "swift_n", "rate_coefficient",
-                               "reference_strain_rate"});
+      keys.insert(keys.end(),
+                  {"yield_stress", "hardening_modulus", "hardening_curve", "swift_k", "swift_eps0",
+                   "swift_n", "rate_coefficient", "reference_strain_rate"});
     check_keys(t, p, keys, "for model '" + model + "'");
     MaterialParams m;
     m.name = entry_name(t, p, names, "material");
@@ -938,7 +946,8 @@ void Reader::read_walls(const toml::table& root, ModelSpec& spec, toml::array& o
   for (const auto& [tp, p] : entries(root, "walls")) {
     const toml::table& t = *tp;
     ++index;
-    check_keys(t, p, {"name", "point", "normal", "velocity", "friction", "penalty_factor", "damping"});
+    check_keys(t, p,
+               {"name", "point", "normal", "velocity", "friction", "penalty_factor", "damping"});
     WallSpec w;
     w.name = entry_name(t, p, names, "wall", "wall" + std::to_string(index));
     w.point = opt_vec3(t, "point", p).value_or(Vec3::Zero());

@@ -46,12 +46,14 @@ std::string summary_to_json(const RunSummary& s) {
                      {"contact", s.energy.contact},
                      {"contact_dissipation", s.energy.contact_dissipation},
                      {"viscous_dissipation", s.energy.viscous_dissipation},
+                     {"mass_scaling_dissipation", s.energy.mass_scaling_dissipation},
                      {"external_work", s.energy.external_work},
                      {"balance_error", s.energy.balance_error}};
   Json bodies = Json::object();
   for (const BodySummary& b : s.bodies) {
     Json jb;
     jb["mass"] = b.mass;
+    jb["added_mass"] = b.added_mass;
     jb["volume"] = b.volume;
     jb["com"] = vec3(b.com);
     jb["vcom"] = vec3(b.vcom);

@@ -22,6 +22,7 @@ struct EnergySummary {
   double contact = 0.0;
   double contact_dissipation = 0.0;
   double viscous_dissipation = 0.0;
+  double mass_scaling_dissipation = 0.0;
   double external_work = 0.0;
   double balance_error = 0.0;
 };
@@ -33,7 +34,8 @@ struct Restitution {
 
 struct BodySummary {
   std::string name;
-  double mass = 0.0;
+  double mass = 0.0;        // rho V0
+  double added_mass = 0.0;  // by simulation.mass_scaling_time_step
   double volume = 0.0;
   std::array<double, 3> com{}, vcom{};
   double kinetic_energy = 0.0;
