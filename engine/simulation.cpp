@@ -63,6 +63,9 @@ Simulation::Simulation(Model model) : model_(std::move(model)) {
     if (model_.dof_mode[i] == 2) driven_dofs_.push_back(i);
   body_added_mass_.assign(model_.bodies.size(), 0.0);
   if (model_.settings.mass_scaling_time_step > 0.0) elem_mass_scale_.assign(ne, 1.0);
+  bool wall_friction = false;
+  for (const Wall& w : model_.walls) wall_friction = wall_friction || w.friction > 0.0;
+  if (wall_friction) wall_stick_.assign(3 * model_.surface.size() * model_.walls.size(), 0.0);
   compute_forces(0.0);
   // mass scaling at t = 0 keeps the given initial velocities: it is part of the initial state
   set_time_step();
@@ -215,38 +218,74 @@ void Simulation::compute_forces(double step_dt) {
     viscous_dissipation_ += power * step_dt;
   }
 
-  // 3. rigid walls: frictionless penalty on boundary nodes
+  // 3. rigid walls: penalty on boundary nodes, Coulomb friction by a tangential spring per
+  // (node, wall) that slips at mu times the normal force
   std::fill(m.f_wall.begin(), m.f_wall.end(), 0.0);
-  double contact = 0.0, damping_power = 0.0;
+  double contact = 0.0, damping_power = 0.0, friction_dissipated = 0.0;
   for (auto& w : m.walls) w.force.setZero();
   if (!m.walls.empty()) {
-    for (const SurfaceNode& s : m.surface) {
+    const std::size_t nw = m.walls.size();
+    for (std::size_t si = 0; si < m.surface.size(); ++si) {
+      const SurfaceNode& s = m.surface[si];
       const Body& b = m.bodies[s.body];
       if (b.fixed) continue;
       const double E = m.materials[b.material].youngs_modulus;
       const Vec3 p(x[3 * s.node], x[3 * s.node + 1], x[3 * s.node + 2]);
-      for (auto& w : m.walls) {
-        const double d = (w.point - p).dot(w.normal);  // penetration depth
-        if (d <= 0.0) continue;
+      const Vec3 v(m.v[3 * s.node], m.v[3 * s.node + 1], m.v[3 * s.node + 2]);
+      for (std::size_t wi = 0; wi < nw; ++wi) {
+        Wall& w = m.walls[wi];
+        double* slip = wall_stick_.empty() ? nullptr : wall_stick_.data() + 3 * (si * nw + wi);
         const double k = w.penalty_factor * E * s.area / s.depth;
+        const double d = (w.point - p).dot(w.normal);  // penetration depth
+        if (d <= 0.0) {
+          if (slip) {
+            // leaving the wall frees the tangential spring: its energy is lost to friction
+            const Vec3 u(slip[0], slip[1], slip[2]);
+            friction_dissipated += 0.5 * k * u.squaredNorm();
+            slip[0] = slip[1] = slip[2] = 0.0;
+          }
+          continue;
+        }
         double fn = k * d;
+        const Vec3 v_rel = v - w.velocity;
+        const double vn = v_rel.dot(w.normal);
         if (w.damping > 0.0) {
           // dashpot on the approach/separation speed (half-step velocity), never pulling
-          const Vec3 v(m.v[3 * s.node], m.v[3 * s.node + 1], m.v[3 * s.node + 2]);
-          const double vn = (v - w.velocity).dot(w.normal);
           const double fd = std::max(-2.0 * w.damping * std::sqrt(k * m.mass[s.node]) * vn, -fn);
           fn += fd;
           damping_power += fd * vn;  // <= 0
         }
-        const Vec3 f = fn * w.normal;
+        Vec3 f = fn * w.normal;
+        contact += 0.5 * k * d * d;
+        if (slip && w.friction > 0.0) {
+          // The spring stretches with the tangential motion over the step (half-step
+          // velocity); past mu fn it slides, and the energy it sheds is dissipated.
+          const Vec3 u_old(slip[0], slip[1], slip[2]);
+          const Vec3 du = step_dt * (v_rel - vn * w.normal);
+          Vec3 u = u_old + du;
+          u -= u.dot(w.normal) * w.normal;
+          const double limit = w.friction * fn / k;  // largest stuck stretch
+          const double stretch = u.norm();
+          if (stretch > limit) {
+            // Slides. Dissipated: the work of the spring force over the step (trapezoidal in
+            // its old and new values, as the time integrator applies it) minus the change of
+            // its stored energy; mu fn times the slip for a steady slide, 0 when stuck.
+            const Vec3 u_new = u * (limit / stretch);
+            friction_dissipated += 0.5 * k * ((u_old + u_new).dot(du) -
+                                              (u_new.squaredNorm() - u_old.squaredNorm()));
+            u = u_new;
+          }
+          f -= k * u;
+          contact += 0.5 * k * u.squaredNorm();
+          slip[0] = u[0], slip[1] = u[1], slip[2] = u[2];
+        }
         for (int c = 0; c < 3; ++c) m.f_wall[3 * s.node + c] += f[c];
         w.force -= f;
-        contact += 0.5 * k * d * d;
       }
     }
   }
   contact_energy_ = contact;
-  contact_dissipation_ -= damping_power * step_dt;
+  contact_dissipation_ += friction_dissipated - damping_power * step_dt;
 
   // 4. accelerations and reactions of constrained dofs
   const Vec3& g = m.settings.gravity;

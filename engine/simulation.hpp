@@ -17,7 +17,7 @@ struct Energies {
   double internal = 0.0;             // stored elastic energy
   double plastic_dissipation = 0.0;  // accumulated
   double contact = 0.0;              // penalty energy stored in contacts (walls and bodies)
-  double contact_dissipation = 0.0;  // accumulated work of contact dashpots
+  double contact_dissipation = 0.0;  // accumulated work of contact dashpots and friction
   double viscous_dissipation = 0.0;  // accumulated work of the artificial bulk viscosity
   // Kinetic energy given up when mass scaling adds mass to a moving node at constant momentum.
   double mass_scaling_dissipation = 0.0;
@@ -100,8 +100,11 @@ class Simulation {
   double contact_dissipation_ = 0.0;
   double viscous_dissipation_ = 0.0;
   double mass_scaling_dissipation_ = 0.0;
-  std::vector<double> elem_mass_scale_;     // >= 1 per element; empty when mass scaling is off
-  std::vector<double> body_added_mass_;     // per body
+  std::vector<double> elem_mass_scale_;  // >= 1 per element; empty when mass scaling is off
+  std::vector<double> body_added_mass_;  // per body
+  // Tangential spring stretch (3) per (surface node, wall) for wall friction; empty when no
+  // wall has friction.
+  std::vector<double> wall_stick_;
   std::vector<double> elem_viscous_power_;  // per element, this step
   // nodal F-bar (FbarMode::Nodal) work arrays
   bool has_nodal_fbar_ = false;
