@@ -76,9 +76,22 @@ struct ConstraintSpec {
   std::optional<Vec3> velocity;  // prescribed velocity of the selected nodes (all components)
 };
 
-struct ContactSettings {
-  double penalty_factor = 100.0;  // penalty = factor * E (the thesis' k = a E)
+// A pair of bodies whose contact friction differs from ContactSettings::friction.
+struct ContactPairSpec {
+  int body_a = -1, body_b = -1;
   double friction = 0.0;
+};
+
+struct ContactSettings {
+  double penalty_factor = 100.0;  // penalty = factor * E of the stiffer side (the thesis' k = aE)
+  double friction = 0.0;          // Coulomb coefficient between bodies
+  std::vector<ContactPairSpec> pairs;
+  // Friction coefficient between two bodies: a pair's own, else the common one.
+  double friction_between(int a, int b) const {
+    for (const ContactPairSpec& p : pairs)
+      if ((p.body_a == a && p.body_b == b) || (p.body_a == b && p.body_b == a)) return p.friction;
+    return friction;
+  }
 };
 
 // The F-bar variant a body gets when its scene does not say. Off for every material for now:

@@ -1104,12 +1104,53 @@ void Reader::read_contact(const toml::table& root, ModelSpec& spec, toml::table&
   ContactSettings& c = spec.contact;
   if (const toml::node* n = root.get("contact")) {
     const toml::table& t = require_table(n, "contact");
-    check_keys(t, "contact", {"penalty_factor", "friction"});
+    check_keys(t, "contact", {"penalty_factor", "friction", "pairs"});
     c.penalty_factor = positive(t, "penalty_factor", "contact", c.penalty_factor, &t);
     c.friction = number(t, "friction", "contact", c.friction, &t);
     if (c.friction < 0.0)
       fail(t.get("friction"), "contact.friction",
            "must not be negative, got " + format_number(c.friction));
+    std::vector<std::string> body_names;
+    for (const auto& b : spec.bodies) body_names.push_back(b.name);
+    toml::array pairs_out;
+    for (const auto& [pt, short_prefix] : entries(t, "pairs")) {
+      const toml::table& pair = *pt;
+      const std::string p = "contact." + short_prefix;
+      check_keys(pair, p, {"bodies", "friction"});
+      const toml::node* bn = pair.get("bodies");
+      if (!bn) fail(&pair, dotted(p, "bodies"), "required value is missing (two body names)");
+      const toml::array* ba = bn->as_array();
+      if (!ba || ba->size() != 2 || !(*ba)[0].is_string() || !(*ba)[1].is_string())
+        fail(bn, dotted(p, "bodies"), "expected two body names, e.g. [\"ball\", \"plate\"]");
+      ContactPairSpec cp;
+      int* ids[2] = {&cp.body_a, &cp.body_b};
+      for (int k = 0; k < 2; ++k) {
+        const std::string name = (*ba)[k].as_string()->get();
+        for (std::size_t i = 0; i < spec.bodies.size(); ++i)
+          if (spec.bodies[i].name == name) *ids[k] = static_cast<int>(i);
+        if (*ids[k] < 0)
+          fail(bn, dotted(p, "bodies"),
+               "unknown body '" + name + "'" + did_you_mean(name, body_names) +
+                   "; bodies: " + join(body_names));
+      }
+      if (cp.body_a == cp.body_b)
+        fail(bn, dotted(p, "bodies"), "names the same body twice: contact is between two bodies");
+      for (const ContactPairSpec& q : c.pairs)
+        if ((q.body_a == cp.body_a && q.body_b == cp.body_b) ||
+            (q.body_a == cp.body_b && q.body_b == cp.body_a))
+          fail(bn, dotted(p, "bodies"), "this pair of bodies is already listed");
+      cp.friction = number(pair, "friction", p, std::nullopt, &pair);
+      if (cp.friction < 0.0)
+        fail(pair.get("friction"), dotted(p, "friction"),
+             "must not be negative, got " + format_number(cp.friction));
+      c.pairs.push_back(cp);
+      toml::table o;
+      o.insert_or_assign("bodies", toml::array{spec.bodies[cp.body_a].name,
+                                               spec.bodies[cp.body_b].name});
+      o.insert_or_assign("friction", cp.friction);
+      pairs_out.push_back(std::move(o));
+    }
+    if (!pairs_out.empty()) out.insert_or_assign("pairs", std::move(pairs_out));
   }
   out.insert_or_assign("penalty_factor", c.penalty_factor);
   out.insert_or_assign("friction", c.friction);
