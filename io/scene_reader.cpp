@@ -631,7 +631,11 @@ void Reader::read_simulation(const toml::table& root, ModelSpec& spec, toml::tab
     (std::string(key) == "bulk_viscosity_linear" ? s.bulk_viscosity_linear
                                                  : s.bulk_viscosity_quadratic) = v;
   }
-  s.mass_scaling_time_step = positive(t, "mass_scaling_time_step", p, 0.0, &t);
+  s.mass_scaling_time_step = number(t, "mass_scaling_time_step", p, 0.0, &t);
+  if (s.mass_scaling_time_step < 0.0)
+    fail(t.get("mass_scaling_time_step"), "simulation.mass_scaling_time_step",
+         "must be 0 (off) or a positive time step, got " +
+             format_number(s.mass_scaling_time_step));
   if (s.mass_scaling_time_step > 0.0 && s.time_step > 0.0)
     fail(t.get("mass_scaling_time_step"), "simulation.mass_scaling_time_step",
          "works with the automatic step only: remove simulation.time_step (the step is then "

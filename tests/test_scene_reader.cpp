@@ -89,7 +89,7 @@ const std::vector<BadCase> kBadCases = {
   {"safety_above_one", 3, "end_time = 1e-3\ntime_step_safety = 1.5", "", "simulation.time_step_safety", 4, "(0, 1]"},
   {"output_interval_zero", 3, "end_time = 1e-3\noutput_interval = 0.0", "", "simulation.output_interval", 4, "must be positive"},
   {"history_interval_negative", 3, "end_time = 1e-3\nhistory_interval = -1e-6", "", "simulation.history_interval", 4, "must be positive"},
-  {"mass_scaling_negative", 3, "end_time = 1e-3\nmass_scaling_time_step = -1e-9", "", "simulation.mass_scaling_time_step", 4, "must be positive"},
+  {"mass_scaling_negative", 3, "end_time = 1e-3\nmass_scaling_time_step = -1e-9", "", "simulation.mass_scaling_time_step", 4, "0 (off) or a positive"},
   {"mass_scaling_with_fixed_step", 3, "end_time = 1e-3\ntime_step = 1e-6\nmass_scaling_time_step = 1e-9", "", "simulation.mass_scaling_time_step", 5, "automatic step only"},
   {"contact_pair_unknown_body", 0, "", "[[contact.pairs]]\nbodies = [\"ball\", \"bal\"]\nfriction = 0.2", "contact.pairs[0].bodies", 21, "did you mean 'ball'?"},
   {"contact_pair_same_body", 0, "", "[[contact.pairs]]\nbodies = [\"ball\", \"ball\"]\nfriction = 0.2", "contact.pairs[0].bodies", 21, "same body twice"},
