@@ -114,17 +114,27 @@ inline int clip_tet(const Tet& in, const Barycentric& plane, int i, Tet* out) {
 
 // Volume and first moment (volume times centroid) of `region` n `other`.
 void clipped_moments(const Tet& region, const Barycentric& other, double& volume, P3& moment) {
+  volume = 0.0;
+  moment = {0.0, 0.0, 0.0};
+  // Planes that keep the whole region need no clipping; one that keeps none of it ends the
+  // work. Most regions of a shallow contact end here.
+  int planes[4], np = 0;
+  for (int i = 0; i < 4; ++i) {
+    int in = 0;
+    for (int k = 0; k < 4; ++k) in += other.eval(i, region.v[k]) >= 0.0;
+    if (in == 0) return;
+    if (in < 4) planes[np++] = i;
+  }
   Tet buf[2][kMaxPieces];
   buf[0][0] = region;
   int n = 1, cur = 0;
-  for (int i = 0; i < 4 && n > 0; ++i) {
+  for (int j = 0; j < np && n > 0; ++j) {
+    const int i = planes[j];
     int m = 0;
     for (int k = 0; k < n; ++k) m += clip_tet(buf[cur][k], other, i, buf[1 - cur] + m);
     cur = 1 - cur;
     n = m;
   }
-  volume = 0.0;
-  moment = {0.0, 0.0, 0.0};
   for (int k = 0; k < n; ++k) {
     const P3* v = buf[cur][k].v;
     const double vol =
