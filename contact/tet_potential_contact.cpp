@@ -156,7 +156,7 @@ void clipped_moments(const Tet& region, const Barycentric& other, double& volume
 // integral with the divergence theorem (lambda_k^O is the faces' velocity field, phi_T = 0 on
 // the rest of the overlap's boundary).
 double add_half(const TetCorners& t, const Barycentric& bt, const Barycentric& bo, double p4,
-                double grad_t[4][3], double grad_o[4][3], double& overlap) {
+                double grad_t[4][3], double grad_o[4][3], double& overlap, P3& overlap_moment) {
   const P3 centroid = {0.25 * (t[0][0] + t[1][0] + t[2][0] + t[3][0]),
                        0.25 * (t[0][1] + t[1][1] + t[2][1] + t[3][1]),
                        0.25 * (t[0][2] + t[1][2] + t[2][2] + t[3][2])};
@@ -172,6 +172,7 @@ double add_half(const TetCorners& t, const Barycentric& bt, const Barycentric& b
     clipped_moments(region, bo, vol, mom);
     if (vol == 0.0) continue;
     overlap += vol;
+    for (int d = 0; d < 3; ++d) overlap_moment[d] += mom[d];
     const double li = bt.c[i] * vol + dot(bt.g[i], mom);  // <lambda_i^T>
     energy += p4 * li;
     for (int m = 0; m < 4; ++m) {
@@ -226,12 +227,15 @@ bool tet_potential_contact(const TetCorners& a_in, const TetCorners& b_in, doubl
   const double p4 = 4.0 * penalty;
   double grad_a[4][3] = {}, grad_b[4][3] = {};
   double overlap_a = 0.0, overlap_b = 0.0;
-  double energy = add_half(a, ba, bb, p4, grad_a, grad_b, overlap_a);
-  energy += add_half(b, bb, ba, p4, grad_b, grad_a, overlap_b);
+  P3 moment_a = {0.0, 0.0, 0.0}, moment_b = {0.0, 0.0, 0.0};
+  double energy = add_half(a, ba, bb, p4, grad_a, grad_b, overlap_a, moment_a);
+  energy += add_half(b, bb, ba, p4, grad_b, grad_a, overlap_b, moment_b);
   if (overlap_a == 0.0 && overlap_b == 0.0) return false;
   out.energy = energy;
   // Both halves measure the same overlap volume; their mean halves the round-off.
   out.overlap_volume = 0.5 * (overlap_a + overlap_b);
+  for (int d = 0; d < 3; ++d)
+    out.overlap_centroid[d] = a_in[0][d] + (moment_a[d] + moment_b[d]) / (overlap_a + overlap_b);
   for (int k = 0; k < 4; ++k)
     for (int d = 0; d < 3; ++d) {
       out.force_a[k][d] = -grad_a[k][d];

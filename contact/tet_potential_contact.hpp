@@ -28,6 +28,7 @@ struct TetPairContact {
   TetCorners force_a{};         // -dE/dx at the corners of A (N)
   TetCorners force_b{};         // -dE/dx at the corners of B; sums to minus the sum over A
   double overlap_volume = 0.0;  // volume of A n B
+  std::array<double, 3> overlap_centroid{};  // centroid of A n B (where friction acts)
 };
 
 // Fills `out` for the pair (a, b) with penalty p (Pa). Returns false, with `out` zeroed, when

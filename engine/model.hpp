@@ -3,6 +3,7 @@
 // The engine's state: flat arrays over all nodes and elements of all bodies.
 // Nodes and elements of body b are the contiguous ranges [first_node, first_node + node_count)
 // and [first_element, first_element + element_count).
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -91,6 +92,15 @@ struct Model {
   std::vector<std::int32_t> node_elem_slot;    // element * 10 + local node
 
   std::vector<SurfaceNode> surface;
+
+  // Contact between bodies acts on the linear sub-tetrahedra of the TET10 elements that touch a
+  // body's boundary: the 4 (of 8, elements/tet10_shape.hpp kSubTets) that each carry one of the
+  // 4 triangles a 6-node boundary face splits into. Global node ids, body per sub-tet.
+  std::vector<std::array<std::int32_t, 4>> contact_tets;
+  std::vector<std::int32_t> contact_tet_body;
+  // Smallest edge of a contact sub-tet in the reference configuration: sets the broadphase
+  // buffer.
+  double contact_tet_min_edge = 0.0;
 };
 
 }  // namespace femdem

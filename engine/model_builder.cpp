@@ -215,6 +215,39 @@ Model build_model(const ModelSpec& spec) {
         ad.second = std::min(ad.second, depth);
       }
     }
+    // contact sub-tets: per element, those of its 8 with three nodes on one of its boundary
+    // faces (each boundary triangle belongs to exactly one)
+    {
+      std::map<std::int32_t, unsigned> element_subtets;  // element -> bit mask over kSubTets
+      for (const auto& f : faces) {
+        const auto& fl = kTet10Faces[f.face];
+        unsigned& mask = element_subtets[f.element];
+        for (int s = 0; s < 8; ++s) {
+          int on_face = 0;
+          for (int a = 0; a < 4; ++a)
+            on_face += std::count(fl.begin(), fl.end(), tet10::kSubTets[s][a]) > 0;
+          if (on_face == 3) mask |= 1u << s;
+        }
+      }
+      for (const auto& [e, mask] : element_subtets) {
+        const Tet10& el = global_elems[e];
+        for (int s = 0; s < 8; ++s) {
+          if (!(mask & (1u << s))) continue;
+          std::array<std::int32_t, 4> t;
+          for (int a = 0; a < 4; ++a) t[a] = el[tet10::kSubTets[s][a]];
+          for (int a = 0; a < 4; ++a)
+            for (int b = a + 1; b < 4; ++b) {
+              const Vec3 d(m.X[3 * t[a]] - m.X[3 * t[b]], m.X[3 * t[a] + 1] - m.X[3 * t[b] + 1],
+                           m.X[3 * t[a] + 2] - m.X[3 * t[b] + 2]);
+              const double len = d.norm();
+              if (m.contact_tet_min_edge == 0.0 || len < m.contact_tet_min_edge)
+                m.contact_tet_min_edge = len;
+            }
+          m.contact_tets.push_back(t);
+          m.contact_tet_body.push_back(static_cast<std::int32_t>(bi));
+        }
+      }
+    }
     for (const auto& [n, ad] : node_area_depth) {
       body.surface_nodes.push_back(n);
       m.surface.push_back({n, static_cast<std::int32_t>(bi), ad.first, ad.second});

@@ -18,7 +18,7 @@ constexpr std::int32_t kParallelMinElements = 512;
 constexpr std::int32_t kParallelMinNodes = 4096;
 }  // namespace
 
-Simulation::Simulation(Model model) : model_(std::move(model)) {
+Simulation::Simulation(Model model) : model_(std::move(model)), body_contact_(model_) {
   const auto nn = static_cast<std::size_t>(model_.node_count);
   const auto ne = static_cast<std::size_t>(model_.element_count);
   accel_.assign(3 * nn, 0.0);
@@ -271,8 +271,8 @@ void Simulation::compute_forces(double step_dt) {
             // its old and new values, as the time integrator applies it) minus the change of
             // its stored energy; mu fn times the slip for a steady slide, 0 when stuck.
             const Vec3 u_new = u * (limit / stretch);
-            friction_dissipated += 0.5 * k * ((u_old + u_new).dot(du) -
-                                              (u_new.squaredNorm() - u_old.squaredNorm()));
+            friction_dissipated +=
+                0.5 * k * ((u_old + u_new).dot(du) - (u_new.squaredNorm() - u_old.squaredNorm()));
             u = u_new;
           }
           f -= k * u;
@@ -283,6 +283,12 @@ void Simulation::compute_forces(double step_dt) {
         w.force -= f;
       }
     }
+  }
+  // 3b. contact between bodies (adds to f_wall: the force of walls and other bodies)
+  if (body_contact_.active()) {
+    body_contact_.compute(m, step_dt, m.f_wall);
+    contact += body_contact_.energy();
+    friction_dissipated += body_contact_.dissipated();
   }
   contact_energy_ = contact;
   contact_dissipation_ += friction_dissipated - damping_power * step_dt;
@@ -385,6 +391,11 @@ void Simulation::set_time_step() {
                               std::sqrt(omega_el * omega_el + k / m.mass[s.node]));
       }
     }
+  }
+  if (body_contact_.active() && body_contact_.max_stiffness_over_mass() > 0.0) {
+    const double omega_el = 2.0 / dt_el;
+    dt = std::min(dt,
+                  2.0 / std::sqrt(omega_el * omega_el + body_contact_.max_stiffness_over_mass()));
   }
   stable_dt_ = dt;
   dt_ = m.settings.time_step > 0.0 ? m.settings.time_step : m.settings.time_step_safety * dt;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/body_contact.hpp"
 #include "engine/model.hpp"
 #include "materials/von_mises.hpp"
 
@@ -55,6 +56,7 @@ class Simulation {
   void step(double dt_limit = HUGE_VAL);
 
   const Model& model() const { return model_; }
+  const BodyContact& body_contact() const { return body_contact_; }
   double time() const { return time_; }
   std::int64_t steps() const { return steps_; }
   double dt() const { return dt_; }                // step that the next step() will take
@@ -105,6 +107,7 @@ class Simulation {
   // Tangential spring stretch (3) per (surface node, wall) for wall friction; empty when no
   // wall has friction.
   std::vector<double> wall_stick_;
+  BodyContact body_contact_;
   std::vector<double> elem_viscous_power_;  // per element, this step
   // nodal F-bar (FbarMode::Nodal) work arrays
   bool has_nodal_fbar_ = false;

@@ -189,6 +189,7 @@ TEST(TetPotentialContact, CoincidentTetsHandDerived) {
     P3 centre{};
     for (const auto& x : a)
       for (int d = 0; d < 3; ++d) centre[d] += 0.25 * x[d];
+    for (int d = 0; d < 3; ++d) EXPECT_NEAR(c.overlap_centroid[d], centre[d], 1e-12);
     double virial = 0.0;
     for (int k = 0; k < 4; ++k)
       for (int d = 0; d < 3; ++d)
@@ -218,6 +219,11 @@ TEST(TetPotentialContact, ApexThroughFlatFaceHandDerived) {
     ASSERT_TRUE(tet_potential_contact(a, b, kPenalty, c));
     EXPECT_NEAR(c.energy, e, 1e-12 * e) << "d = " << d;
     EXPECT_NEAR(c.overlap_volume, sa * ha / 3 * std::pow(d / ha, 3), 1e-12) << "d = " << d;
+    // the tip is A scaled by d / H_A about the apex: so is its centroid
+    for (int i = 0; i < 3; ++i) {
+      const double ca = 0.25 * (a[0][i] + a[1][i] + a[2][i] + a[3][i]);
+      EXPECT_NEAR(c.overlap_centroid[i], a[3][i] + d / ha * (ca - a[3][i]), 1e-12) << i;
+    }
     P3 fa{}, fb{};
     for (int k = 0; k < 4; ++k)
       for (int i = 0; i < 3; ++i) {

@@ -1,0 +1,215 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "engine/body_contact.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+#include "contact/tet_potential_contact.hpp"
+
+namespace femdem {
+namespace {
+
+// The buffer as a fraction of the smallest contact sub-tet edge: larger means fewer broadphase
+// runs but more candidate pairs to reject every step.
+constexpr double kBufferPerEdge = 0.3;
+
+// Below this many candidate pairs a parallel region costs more than it saves.
+constexpr std::size_t kParallelMinPairs = 256;
+
+double buffer_for(const Model& m) {
+  return m.contact_tet_min_edge > 0.0 ? kBufferPerEdge * m.contact_tet_min_edge : 1.0;
+}
+
+// Barycentric coordinates of p in the tetrahedron t (any orientation, non-degenerate).
+std::array<double, 4> barycentric(const contact::TetCorners& t, const Vec3& p) {
+  Eigen::Matrix3d A;
+  for (int k = 0; k < 3; ++k)
+    for (int a = 0; a < 3; ++a) A(k, a) = t[a + 1][k] - t[0][k];
+  const Vec3 rhs(p[0] - t[0][0], p[1] - t[0][1], p[2] - t[0][2]);
+  const Vec3 l = A.inverse() * rhs;
+  return {1.0 - l[0] - l[1] - l[2], l[0], l[1], l[2]};
+}
+
+}  // namespace
+
+BodyContact::BodyContact(const Model& m) : verlet_(buffer_for(m)) {
+  // two bodies that can move towards each other
+  int with_tets = 0, movable = 0;
+  std::vector<char> has_tets(m.bodies.size(), 0);
+  for (std::int32_t b : m.contact_tet_body) has_tets[b] = 1;
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    with_tets += has_tets[b];
+    movable += has_tets[b] && !m.bodies[b].fixed;
+  }
+  active_ = with_tets >= 2 && movable >= 1;
+  if (!active_) return;
+  std::vector<char> used(m.node_count, 0);
+  for (const auto& t : m.contact_tets)
+    for (std::int32_t n : t) used[n] = 1;
+  for (std::int32_t n = 0; n < m.node_count; ++n)
+    if (used[n]) nodes_.push_back(n);
+  node_positions_.resize(nodes_.size());
+  boxes_.resize(m.contact_tets.size());
+  groups_.assign(m.contact_tet_body.begin(), m.contact_tet_body.end());
+  node_stiffness_.assign(m.node_count, 0.0);
+}
+
+void BodyContact::update_candidates(const Model& m) {
+  const double margin = verlet_.margin();
+  for (std::size_t t = 0; t < m.contact_tets.size(); ++t) {
+    Aabb& b = boxes_[t];
+    b.lo = {HUGE_VAL, HUGE_VAL, HUGE_VAL};
+    b.hi = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    for (std::int32_t n : m.contact_tets[t])
+      for (int k = 0; k < 3; ++k) {
+        b.lo[k] = std::min(b.lo[k], m.x[3 * n + k] - margin);
+        b.hi[k] = std::max(b.hi[k], m.x[3 * n + k] + margin);
+      }
+  }
+  broadphase_.find_pairs(boxes_, groups_, found_);
+  ++broadphase_runs_;
+  verlet_.record(node_positions_);
+
+  // the new list, carrying each surviving pair's friction spring over (both lists are sorted)
+  std::swap(pairs_, old_pairs_);
+  pairs_.clear();
+  std::size_t o = 0;
+  for (const CandidatePair& c : found_) {
+    const int ba = m.contact_tet_body[c.i], bb = m.contact_tet_body[c.j];
+    if (m.bodies[ba].fixed && m.bodies[bb].fixed) continue;
+    Pair p;
+    p.i = c.i;
+    p.j = c.j;
+    p.penalty =
+        m.contact.penalty_factor * std::max(m.materials[m.bodies[ba].material].youngs_modulus,
+                                            m.materials[m.bodies[bb].material].youngs_modulus);
+    p.friction = m.contact.friction_between(ba, bb);
+    while (o < old_pairs_.size() &&
+           (old_pairs_[o].i < c.i || (old_pairs_[o].i == c.i && old_pairs_[o].j < c.j)))
+      ++o;
+    if (o < old_pairs_.size() && old_pairs_[o].i == c.i && old_pairs_[o].j == c.j) {
+      std::copy(old_pairs_[o].stick, old_pairs_[o].stick + 3, p.stick);
+      p.stick_stiffness = old_pairs_[o].stick_stiffness;
+    }
+    pairs_.push_back(p);
+  }
+  // A pair that drops out of the list is far apart: its spring was released when it stopped
+  // touching (evaluate() zeroes it then), so nothing is lost here.
+  results_.resize(pairs_.size());
+}
+
+void BodyContact::evaluate(const Model& m, Pair& p, double step_dt, PairResult& r) const {
+  contact::TetCorners a, b;
+  const auto& ta = m.contact_tets[p.i];
+  const auto& tb = m.contact_tets[p.j];
+  for (int c = 0; c < 4; ++c)
+    for (int k = 0; k < 3; ++k) {
+      a[c][k] = m.x[3 * ta[c] + k];
+      b[c][k] = m.x[3 * tb[c] + k];
+    }
+  r.energy = r.dissipated = r.stiffness = 0.0;
+  contact::TetPairContact out;
+  r.touching = contact::tet_potential_contact(a, b, p.penalty, out);
+  if (!r.touching || !(out.energy > 0.0)) {
+    r.touching = false;
+    // released: the spring's energy goes to friction
+    const double u2 = p.stick[0] * p.stick[0] + p.stick[1] * p.stick[1] + p.stick[2] * p.stick[2];
+    r.dissipated = 0.5 * p.stick_stiffness * u2;
+    p.stick[0] = p.stick[1] = p.stick[2] = 0.0;
+    return;
+  }
+  for (int c = 0; c < 4; ++c)
+    for (int k = 0; k < 3; ++k) {
+      r.force[3 * c + k] = out.force_a[c][k];
+      r.force[12 + 3 * c + k] = out.force_b[c][k];
+    }
+  r.energy = out.energy;
+  Vec3 fb = Vec3::Zero();
+  for (int c = 0; c < 4; ++c) fb += Vec3(out.force_b[c][0], out.force_b[c][1], out.force_b[c][2]);
+  const double N = fb.norm();
+  const double k_n = N * N / (2.0 * out.energy);
+  // the stable step: a pair stiffer than its secant (a corner poking in: E ~ d^4) by up to 2
+  r.stiffness = 2.0 * k_n;
+  if (p.friction <= 0.0 || !(N > 0.0)) return;
+
+  const Vec3 n = fb / N;
+  const Vec3 c(out.overlap_centroid[0], out.overlap_centroid[1], out.overlap_centroid[2]);
+  const auto la = barycentric(a, c), lb = barycentric(b, c);
+  Vec3 va = Vec3::Zero(), vb = Vec3::Zero();
+  for (int q = 0; q < 4; ++q) {
+    va += la[q] * Vec3(m.v[3 * ta[q]], m.v[3 * ta[q] + 1], m.v[3 * ta[q] + 2]);
+    vb += lb[q] * Vec3(m.v[3 * tb[q]], m.v[3 * tb[q] + 1], m.v[3 * tb[q] + 2]);
+  }
+  const Vec3 v_rel = vb - va;
+  const Vec3 du = step_dt * (v_rel - v_rel.dot(n) * n);
+  Vec3 u_old(p.stick[0], p.stick[1], p.stick[2]);
+  u_old -= u_old.dot(n) * n;  // the contact plane turns with the bodies
+  Vec3 u = u_old + du;
+  const double k_t = k_n;
+  const double limit = p.friction * N / k_t;
+  const double stretch = u.norm();
+  if (stretch > limit) {
+    // slides: the spring force's work over the step (trapezoidal, as the integrator applies it)
+    // minus the change of its stored energy
+    const Vec3 u_new = u * (limit / stretch);
+    r.dissipated =
+        0.5 * k_t * ((u_old + u_new).dot(du) - (u_new.squaredNorm() - u_old.squaredNorm()));
+    u = u_new;
+  }
+  p.stick[0] = u[0], p.stick[1] = u[1], p.stick[2] = u[2];
+  p.stick_stiffness = k_t;
+  r.energy += 0.5 * k_t * u.squaredNorm();
+  const Vec3 ft = -k_t * u;  // on B at c; minus that on A
+  for (int q = 0; q < 4; ++q)
+    for (int k = 0; k < 3; ++k) {
+      r.force[3 * q + k] -= la[q] * ft[k];
+      r.force[12 + 3 * q + k] += lb[q] * ft[k];
+    }
+}
+
+void BodyContact::compute(const Model& m, double step_dt, std::vector<double>& f) {
+  energy_ = dissipated_ = max_k_over_m_ = 0.0;
+  touching_ = 0;
+  if (!active_) return;
+  for (std::size_t q = 0; q < nodes_.size(); ++q) {
+    const std::int32_t n = nodes_[q];
+    node_positions_[q] = Vec3(m.x[3 * n], m.x[3 * n + 1], m.x[3 * n + 2]);
+  }
+  if (verlet_.needs_rebuild(node_positions_)) update_candidates(m);
+
+  const auto np = static_cast<std::int64_t>(pairs_.size());
+#pragma omp parallel for schedule(dynamic, 64) if (pairs_.size() > kParallelMinPairs)
+  for (std::int64_t q = 0; q < np; ++q) evaluate(m, pairs_[q], step_dt, results_[q]);
+
+  // sum in pair order: the same bits with any number of threads
+  for (std::size_t q = 0; q < pairs_.size(); ++q) {
+    const PairResult& r = results_[q];
+    dissipated_ += r.dissipated;
+    if (!r.touching) continue;
+    ++touching_;
+    energy_ += r.energy;
+    const auto& ta = m.contact_tets[pairs_[q].i];
+    const auto& tb = m.contact_tets[pairs_[q].j];
+    for (int c = 0; c < 4; ++c)
+      for (int k = 0; k < 3; ++k) {
+        f[3 * ta[c] + k] += r.force[3 * c + k];
+        f[3 * tb[c] + k] += r.force[12 + 3 * c + k];
+      }
+    for (int c = 0; c < 4; ++c) {
+      node_stiffness_[ta[c]] += r.stiffness;
+      node_stiffness_[tb[c]] += r.stiffness;
+    }
+  }
+  for (std::size_t q = 0; q < pairs_.size(); ++q) {
+    if (!results_[q].touching) continue;
+    for (const auto* t : {&m.contact_tets[pairs_[q].i], &m.contact_tets[pairs_[q].j]})
+      for (std::int32_t n : *t) {
+        if (node_stiffness_[n] > 0.0 && m.mass[n] > 0.0)
+          max_k_over_m_ = std::max(max_k_over_m_, node_stiffness_[n] / m.mass[n]);
+        node_stiffness_[n] = 0.0;
+      }
+  }
+}
+
+}  // namespace femdem

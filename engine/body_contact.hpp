@@ -1,0 +1,83 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// Contact between bodies: the NBS broadphase over the contact sub-tetrahedra of all bodies
+// (Model::contact_tets), kept valid by a Verlet buffer so it runs only when something has moved
+// far enough; the exact penalty-potential force of every overlapping pair
+// (contact/tet_potential_contact.hpp); and Coulomb friction by a tangential spring per pair.
+//
+// Friction. The potential gives a pair its normal force N (the resultant on one side), energy
+// E and overlap centroid c. The friction spring of the pair stretches with the tangential
+// relative velocity at c, with stiffness k_t = N^2 / (2 E), the pair's secant normal stiffness
+// (exact for a flat overlap of depth d, where E = N d / 2), so a stuck contact yields by at most
+// mu d before it slides. Its force acts at c on both tetrahedra (spread by the barycentric
+// coordinates of c), so it is equal and opposite with no spurious moment. The spring slides at
+// mu N; the work of sliding is dissipated, the spring's energy is stored contact energy.
+//
+// Every pair is evaluated independently (OpenMP) into its own slot and the forces are summed
+// over pairs in their sorted order, so results do not depend on the thread count.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "contact/nbs_broadphase.hpp"
+#include "contact/verlet_buffer.hpp"
+#include "engine/model.hpp"
+
+namespace femdem {
+
+class BodyContact {
+ public:
+  explicit BodyContact(const Model& m);
+
+  // False when no two bodies can touch (fewer than two bodies with contact sub-tets, or all
+  // fixed): compute() then does nothing.
+  bool active() const { return active_; }
+
+  // Adds the contact forces at the current positions to f (3 per node), advancing the
+  // friction springs over step_dt with the (half-step) velocities.
+  void compute(const Model& m, double step_dt, std::vector<double>& f);
+
+  double energy() const { return energy_; }          // stored now (potential + springs)
+  double dissipated() const { return dissipated_; }  // by friction in the last compute()
+  // Largest over nodes of (sum of the contact stiffness on the node) / (its mass): the stable
+  // step bound adds it to the element frequency squared.
+  double max_stiffness_over_mass() const { return max_k_over_m_; }
+
+  std::size_t candidate_pairs() const { return pairs_.size(); }
+  std::size_t touching_pairs() const { return touching_; }
+  std::int64_t broadphase_runs() const { return broadphase_runs_; }
+
+ private:
+  struct Pair {
+    std::uint32_t i = 0, j = 0;    // contact sub-tets, i < j
+    double penalty = 0.0;          // Pa
+    double friction = 0.0;         // Coulomb coefficient
+    double stick[3] = {0, 0, 0};   // friction spring stretch
+    double stick_stiffness = 0.0;  // k_t of the last step it touched
+  };
+  struct PairResult {
+    double force[24];  // 4 corners of tet i, then 4 of tet j
+    double energy = 0.0, dissipated = 0.0, stiffness = 0.0;
+    bool touching = false;
+  };
+
+  void update_candidates(const Model& m);
+  void evaluate(const Model& m, Pair& p, double step_dt, PairResult& r) const;
+
+  bool active_ = false;
+  NbsBroadphase broadphase_;
+  VerletBuffer verlet_;
+  std::vector<std::int32_t> nodes_;  // the nodes of contact sub-tets
+  std::vector<Vec3> node_positions_;
+  std::vector<Aabb> boxes_;
+  std::vector<std::int32_t> groups_;  // body of each contact sub-tet
+  std::vector<CandidatePair> found_;
+  std::vector<Pair> pairs_, old_pairs_;
+  std::vector<PairResult> results_;
+  std::vector<double> node_stiffness_;  // per model node, this step
+  double energy_ = 0.0, dissipated_ = 0.0, max_k_over_m_ = 0.0;
+  std::size_t touching_ = 0;
+  std::int64_t broadphase_runs_ = 0;
+};
+
+}  // namespace femdem
