@@ -776,7 +776,8 @@ Tet10Mesh Reader::read_mesh(const toml::table& mesh, const std::string& bp,
   if (has_gen) {
     const std::string gen = string(mesh, "generator", p, &mesh);
     const toml::node* gn = mesh.get("generator");
-    std::vector<std::string> allowed = {"generator", "element_size"};
+    std::vector<std::string> allowed = {"generator",   "element_size",  "refine_point",
+                                        "refine_size", "refine_radius", "refine_growth"};
     if (gen == "box")
       allowed.push_back("size");
     else if (gen == "cylinder")
@@ -808,7 +809,41 @@ Tet10Mesh Reader::read_mesh(const toml::table& mesh, const std::string& bp,
         out.insert_or_assign("length", length);
       }
     }
+    // Local refinement near a point (all three generators).
+    std::optional<MeshRefinement> refine;
+    if (mesh.contains("refine_point") || mesh.contains("refine_size") ||
+        mesh.contains("refine_radius") || mesh.contains("refine_growth")) {
+      MeshRefinement r;
+      const auto point = opt_vec3(mesh, "refine_point", p);
+      if (!point)
+        fail(&mesh, dotted(p, "refine_point"),
+             "required value is missing when refining ([x, y, z] in m, in the mesh's own frame)");
+      r.point = *point;
+      r.size = positive(mesh, "refine_size", p, std::nullopt, &mesh);
+      if (r.size > h)
+        fail(mesh.get("refine_size"), dotted(p, "refine_size"),
+             "must not be larger than element_size (" + format_number(h) + ")");
+      r.radius = number(mesh, "refine_radius", p, 0.0, &mesh);
+      if (!(r.radius >= 0.0))
+        fail(mesh.get("refine_radius"), dotted(p, "refine_radius"),
+             "must be >= 0, got " + format_number(r.radius));
+      r.growth = positive(mesh, "refine_growth", p, kDefaultRefineGrowth, &mesh);
+      if (!(r.growth <= 2.0))
+        fail(mesh.get("refine_growth"), dotted(p, "refine_growth"),
+             "must be in (0, 2], got " + format_number(r.growth));
+      out.insert_or_assign("refine_point", toml::array{r.point.x(), r.point.y(), r.point.z()});
+      out.insert_or_assign("refine_size", r.size);
+      out.insert_or_assign("refine_radius", r.radius);
+      out.insert_or_assign("refine_growth", r.growth);
+      refine = r;
+    }
     try {
+      if (refine) {
+        // Checked (and its element count estimated) inside the generators.
+        if (gen == "box") return generate_box(size, h, refine);
+        if (gen == "cylinder") return generate_cylinder(radius, length, h, refine);
+        return generate_sphere(radius, h, refine);
+      }
       // Counted first, so that a typo in element_size fails fast instead of exhausting memory.
       if (gen == "box") {
         box_element_count(size, h);
@@ -821,8 +856,15 @@ Tet10Mesh Reader::read_mesh(const toml::table& mesh, const std::string& bp,
       sphere_element_count(radius, h);
       return generate_sphere(radius, h);
     } catch (const InputError& e) {
-      fail(mesh.get("element_size"), dotted(p, "element_size"),
-           "cannot generate the mesh: " + std::string(e.what()));
+      const std::string what = e.what();
+      // Errors about the refinement name its key (refine_point, refine_size, ...).
+      std::string key = "element_size";
+      for (const char* k : {"refine_point", "refine_size", "refine_radius", "refine_growth"})
+        if (refine && what.find(k) != std::string::npos) {
+          key = k;
+          break;
+        }
+      fail(mesh.get(key), dotted(p, key), "cannot generate the mesh: " + what);
     } catch (const std::exception& e) {
       fail(&mesh, p, "cannot generate the mesh: " + std::string(e.what()));
     }
