@@ -53,6 +53,11 @@ BodyContact::BodyContact(const Model& m) : verlet_(buffer_for(m)) {
   boxes_.resize(m.contact_tets.size());
   groups_.assign(m.contact_tet_body.begin(), m.contact_tet_body.end());
   node_stiffness_.assign(m.node_count, 0.0);
+  double e_max = 0.0;
+  for (const Body& b : m.bodies) e_max = std::max(e_max, m.materials[b.material].youngs_modulus);
+  node_contact_stiffness_.assign(m.node_count, 0.0);
+  for (const SurfaceNode& s : m.surface)
+    node_contact_stiffness_[s.node] = 16.0 * m.contact.penalty_factor * e_max * s.area / s.depth;
 }
 
 void BodyContact::update_candidates(const Model& m) {
@@ -94,6 +99,12 @@ void BodyContact::update_candidates(const Model& m) {
     }
     pairs_.push_back(p);
   }
+  near_k_over_m_ = 0.0;
+  for (const Pair& p : pairs_)
+    for (std::uint32_t t : {p.i, p.j})
+      for (std::int32_t n : m.contact_tets[t])
+        if (m.mass[n] > 0.0)
+          near_k_over_m_ = std::max(near_k_over_m_, node_contact_stiffness_[n] / m.mass[n]);
   // A pair that drops out of the list is far apart: its spring was released when it stopped
   // touching (evaluate() zeroes it then), so nothing is lost here.
   results_.resize(pairs_.size());
@@ -169,7 +180,7 @@ void BodyContact::evaluate(const Model& m, Pair& p, double step_dt, PairResult& 
 }
 
 void BodyContact::compute(const Model& m, double step_dt, std::vector<double>& f) {
-  energy_ = dissipated_ = max_k_over_m_ = 0.0;
+  energy_ = dissipated_ = 0.0;
   touching_ = 0;
   if (!active_) return;
   for (std::size_t q = 0; q < nodes_.size(); ++q) {
@@ -177,6 +188,7 @@ void BodyContact::compute(const Model& m, double step_dt, std::vector<double>& f
     node_positions_[q] = Vec3(m.x[3 * n], m.x[3 * n + 1], m.x[3 * n + 2]);
   }
   if (verlet_.needs_rebuild(node_positions_)) update_candidates(m);
+  max_k_over_m_ = near_k_over_m_;
 
   const auto np = static_cast<std::int64_t>(pairs_.size());
 #pragma omp parallel for schedule(dynamic, 64) if (pairs_.size() > kParallelMinPairs)

@@ -75,6 +75,11 @@ class BodyContact {
   std::vector<Pair> pairs_, old_pairs_;
   std::vector<PairResult> results_;
   std::vector<double> node_stiffness_;  // per model node, this step
+  // Per boundary node, the stiffness a flat contact would give it (8 p A / h: the potentials of
+  // both sides rise by 4 / h across their elements): counted for the stable step as soon as the
+  // node's sub-tets are candidates, because a flat contact is that stiff from its first touch.
+  std::vector<double> node_contact_stiffness_;
+  double near_k_over_m_ = 0.0;  // largest over the nodes of candidate pairs
   double energy_ = 0.0, dissipated_ = 0.0, max_k_over_m_ = 0.0;
   std::size_t touching_ = 0;
   std::int64_t broadphase_runs_ = 0;

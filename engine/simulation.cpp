@@ -502,7 +502,8 @@ BodyState Simulation::body_motion(int bi) const {
     }
     s.kinetic_energy += 0.5 * mn * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
   }
-  for (std::int32_t n : b.surface_nodes)
+  // contact acts on boundary nodes and, through the contact sub-tets, on nodes just inside
+  for (std::int32_t n = b.first_node; n < b.first_node + b.node_count; ++n)
     s.contact_force += Vec3(m.f_wall[3 * n], m.f_wall[3 * n + 1], m.f_wall[3 * n + 2]);
   s.com /= msum;
   s.vcom /= msum;
@@ -547,6 +548,17 @@ BodyState Simulation::body_state(int bi) const {
     }
   }
   s.volume = vol;
+  // angular velocity: the lumped inertia tensor about the centre of mass inverted on the
+  // angular momentum (a deforming body's mean spin)
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+  Vec3 spin_momentum = Vec3::Zero();
+  for (std::int32_t n = b.first_node; n < b.first_node + b.node_count; ++n) {
+    const Vec3 r = Vec3(m.x[3 * n], m.x[3 * n + 1], m.x[3 * n + 2]) - s.com;
+    const Vec3 u = Vec3(m.v[3 * n], m.v[3 * n + 1], m.v[3 * n + 2]) - s.vcom;
+    inertia += m.mass[n] * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
+    spin_momentum += m.mass[n] * r.cross(u);
+  }
+  if (inertia.determinant() > 0.0) s.angular_velocity = inertia.ldlt().solve(spin_momentum);
   for (std::size_t g = 4 * static_cast<std::size_t>(b.first_element);
        g < 4 * static_cast<std::size_t>(b.first_element + b.element_count); ++g)
     s.max_equivalent_plastic_strain =

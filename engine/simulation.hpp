@@ -36,6 +36,7 @@ struct BodyState {
   double volume = 0.0;      // current, from the deformed elements
   Vec3 com = Vec3::Zero();
   Vec3 vcom = Vec3::Zero();
+  Vec3 angular_velocity = Vec3::Zero();  // rad/s, about the centre of mass (body_state only)
   double kinetic_energy = 0.0;
   Vec3 contact_force = Vec3::Zero();  // walls and other bodies, on this body
   Vec3 bbox_min = Vec3::Zero(), bbox_max = Vec3::Zero();

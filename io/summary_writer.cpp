@@ -57,6 +57,7 @@ std::string summary_to_json(const RunSummary& s) {
     jb["volume"] = b.volume;
     jb["com"] = vec3(b.com);
     jb["vcom"] = vec3(b.vcom);
+    jb["angular_velocity"] = vec3(b.angular_velocity);
     jb["kinetic_energy"] = b.kinetic_energy;
     jb["bbox_min"] = vec3(b.bbox_min);
     jb["bbox_max"] = vec3(b.bbox_max);

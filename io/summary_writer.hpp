@@ -38,6 +38,7 @@ struct BodySummary {
   double added_mass = 0.0;  // by simulation.mass_scaling_time_step
   double volume = 0.0;
   std::array<double, 3> com{}, vcom{};
+  std::array<double, 3> angular_velocity{};  // rad/s about the centre of mass
   double kinetic_energy = 0.0;
   std::array<double, 3> bbox_min{}, bbox_max{};
   double max_equivalent_plastic_strain = 0.0;

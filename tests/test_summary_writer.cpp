@@ -27,7 +27,15 @@ RunSummary example() {
   s.threads = 2;
   s.nodes = 35000;
   s.elements = 23000;
-  s.energy = {1.0, 2.0, 3.0, 4.0, 0.5, 0.25, 5.0, 1e-4};
+  s.energy = {.kinetic = 1.0,
+              .internal = 2.0,
+              .plastic_dissipation = 3.0,
+              .contact = 4.0,
+              .contact_dissipation = 0.5,
+              .viscous_dissipation = 0.25,
+              .mass_scaling_dissipation = 0.125,
+              .external_work = 5.0,
+              .balance_error = 1e-4};
   BodySummary rod;
   rod.name = "rod";
   rod.mass = 2.3;
@@ -70,22 +78,24 @@ TEST(SummaryWriter, RoundTripKeysAndNull) {
   EXPECT_EQ(j["nodes"], 35000);
   EXPECT_EQ(j["elements"], 23000);
   const json& e = j["energy"];
-  EXPECT_EQ(e.size(), 8u);
+  EXPECT_EQ(e.size(), 9u);  // with viscous_dissipation and mass_scaling_dissipation
   EXPECT_EQ(e["kinetic"], 1.0);
   EXPECT_EQ(e["internal"], 2.0);
   EXPECT_EQ(e["plastic_dissipation"], 3.0);
   EXPECT_EQ(e["contact"], 4.0);
   EXPECT_EQ(e["contact_dissipation"], 0.5);
+  EXPECT_EQ(e["mass_scaling_dissipation"], 0.125);
   EXPECT_EQ(e["external_work"], 5.0);
   EXPECT_EQ(e["balance_error"], 1e-4);
 
   ASSERT_EQ(j["bodies"].size(), 2u);
   const json& rod = j["bodies"]["rod"];
-  for (const char* key : {"mass", "volume", "com", "vcom", "kinetic_energy", "bbox_min", "bbox_max",
-                          "max_equivalent_plastic_strain", "coefficient_of_restitution"}) {
+  for (const char* key :
+       {"mass", "added_mass", "volume", "com", "vcom", "angular_velocity", "kinetic_energy",
+        "bbox_min", "bbox_max", "max_equivalent_plastic_strain", "coefficient_of_restitution"}) {
     EXPECT_TRUE(rod.contains(key)) << key;
   }
-  EXPECT_EQ(rod.size(), 9u);
+  EXPECT_EQ(rod.size(), 11u);
   EXPECT_TRUE(rod["coefficient_of_restitution"].is_null());
   EXPECT_EQ(rod["vcom"], json::array({0.0, 0.0, -227.0}));
   EXPECT_EQ(rod["bbox_max"], json::array({1.0, 2.0, 3.0}));
