@@ -3,6 +3,7 @@
 
 #include <fcntl.h>
 #include <sched.h>
+#include <sys/prctl.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -391,8 +392,12 @@ pid_t spawn(const std::vector<std::string>& args, const std::string& output, boo
   std::vector<char*> argv;
   for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
+  const pid_t parent = getpid();
   const pid_t pid = fork();
   if (pid != 0) return pid;  // parent (or -1)
+  // A sweep that is killed outright takes its runs with it (they write "interrupted").
+  prctl(PR_SET_PDEATHSIG, SIGTERM);
+  if (getppid() != parent) _exit(1);
   const int in = open("/dev/null", O_RDONLY);
   if (in >= 0) dup2(in, 0);
   if (!output.empty()) {
