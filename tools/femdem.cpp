@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The femdem command-line program: `femdem run|check SCENE ...` (see docs/SCENES.md and
+// The femdem command-line program: `femdem run|check|sweep SCENE ...` (see docs/SCENES.md and
 // /work/shared/SCENE_FORMAT.md). Exit codes: 0 success, 2 bad input, 3 unstable, 1 otherwise.
 #include <fmt/core.h>
 
@@ -18,6 +18,7 @@
 #include "io/runner.hpp"
 #include "io/scene_reader.hpp"
 #include "io/strain_path.hpp"
+#include "io/sweep.hpp"
 
 namespace {
 
@@ -174,6 +175,28 @@ void print_summary(const femdem::SceneFile& scene) {
   fmt::print("Scene OK.\n");
 }
 
+// The plot script `femdem sweep` calls: next to the program's source tree (baked in at build
+// time), else in ../tools/ of the program's folder.
+std::string plot_sweep_script(const std::string& exe) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+#ifdef FEMDEM_TOOLS_DIR
+  if (fs::exists(fs::path(FEMDEM_TOOLS_DIR) / "plot_sweep.py", ec))
+    return (fs::path(FEMDEM_TOOLS_DIR) / "plot_sweep.py").string();
+#endif
+  const fs::path near = fs::path(exe).parent_path() / ".." / "tools" / "plot_sweep.py";
+  if (fs::exists(near, ec)) return near.string();
+  return {};
+}
+
+// This program's own path, for the sweep's child processes.
+std::string self_exe(const char* argv0) {
+  std::error_code ec;
+  const auto p = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec && !p.empty()) return p.string();
+  return std::filesystem::absolute(argv0, ec).string();
+}
+
 std::string default_out_dir(const femdem::SceneFile& scene) {
   return (std::filesystem::path("out") / scene.stem).string() + "/";
 }
@@ -256,6 +279,38 @@ int main(int argc, char** argv) {
   check->add_option("--substeps", substeps, "Increments between two targets (default 10)")
       ->check(CLI::PositiveNumber);
 
+  CLI::App* sweep = app.add_subcommand(
+      "sweep",
+      "Run a scene for every combination of --vary values, each run in its own sub-folder, "
+      "and collect the results in DIR/sweep.csv (plus plots)");
+  femdem::SweepOptions sweep_options;
+  sweep->add_option("scene", sweep_options.scene_path, "Scene file (TOML)")->required();
+  sweep
+      ->add_option("--vary", sweep_options.vary,
+                   "KEY=V1,V2,...: values of one scene key (repeatable; the runs are the "
+                   "cartesian product). Commas inside [..] separate array elements, not values: "
+                   "bodies.ball.velocity=[0,0,-5],[0,0,-10]. Ranges: START:STOP:STEP, "
+                   "linspace(A,B,N), logspace(A,B,N)")
+      ->required()
+      ->allow_extra_args(false);
+  sweep
+      ->add_option("--set", sweep_options.overrides,
+                   "Override a scene value in every run: KEY=VALUE (repeatable)")
+      ->allow_extra_args(false);
+  sweep->add_option("--out", sweep_options.out_dir,
+                    "Sweep folder (default: out/<scene file stem>_sweep/)");
+  sweep
+      ->add_option("--jobs", sweep_options.jobs,
+                   "Runs at a time (default: cores / threads per job)")
+      ->check(CLI::PositiveNumber);
+  sweep
+      ->add_option("--threads-per-job", sweep_options.threads_per_job,
+                   "Threads of each run (default 1)")
+      ->check(CLI::PositiveNumber);
+  bool no_plot = false;
+  sweep->add_flag("--no-plot", no_plot, "Do not call tools/plot_sweep.py at the end");
+  sweep->add_flag("--quiet", sweep_options.quiet, "Print nothing but errors");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -272,6 +327,12 @@ int main(int argc, char** argv) {
         return material_point(scene, material_name, strain_path, substeps);
       print_summary(scene);
       return kExitOk;
+    }
+    if (sweep->parsed()) {
+      sweep_options.plot = !no_plot;
+      sweep_options.femdem_exe = self_exe(argv[0]);
+      sweep_options.plot_script = plot_sweep_script(sweep_options.femdem_exe);
+      return femdem::run_sweep(sweep_options);
     }
     if (run->parsed()) {
       femdem::SceneFile scene = femdem::load_scene(scene_path, overrides);

@@ -1,0 +1,37 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// `femdem sweep`: runs a scene over the cartesian product of --vary value lists, each point as
+// a separate `femdem run` process in its own sub-folder, and collects every run's summary.json
+// into DIR/sweep.csv (see docs/OUTPUTS.md, "Parameter sweeps").
+#include <string>
+#include <vector>
+
+namespace femdem {
+
+struct SweepOptions {
+  std::string scene_path;
+  std::vector<std::string> vary;       // "KEY=V1,V2,..." (the command line's --vary)
+  std::vector<std::string> overrides;  // "KEY=VALUE" applied to every run (--set)
+  std::string out_dir;                 // empty: out/<scene stem>_sweep/
+  int jobs = 0;                        // runs at a time; 0: cores / threads_per_job
+  int threads_per_job = 1;             // --threads of each run
+  bool quiet = false;
+  bool plot = true;         // false: no plots (--no-plot)
+  std::string femdem_exe;   // the program each run executes (`femdem run ...`)
+  std::string plot_script;  // tools/plot_sweep.py; empty or missing: no plots (with a note)
+};
+
+// A --vary value list split into values. Values are separated by commas outside brackets,
+// braces, parentheses and quotes, so arrays need no escaping: "[0,0,-5],[0,0,-10]" is two
+// values. An item "START:STOP:STEP" expands to START, START+STEP, ... up to STOP (inclusive);
+// "linspace(A,B,N)" to N evenly spaced values from A to B; "logspace(A,B,N)" to N values from A
+// to B in geometric progression. Integers stay integers when every number of a range is one.
+// `key` is only used in error messages. Throws InputError.
+std::vector<std::string> split_value_list(const std::string& list, const std::string& key);
+
+// Validates everything (exit code 2 via InputError before any run starts), runs the sweep and
+// returns the exit code: 0 every run completed, 3 some diverged (and none failed otherwise),
+// 1 a run failed otherwise or the sweep was interrupted.
+int run_sweep(const SweepOptions& options);
+
+}  // namespace femdem
