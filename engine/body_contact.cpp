@@ -31,6 +31,12 @@ std::array<double, 4> barycentric(const contact::TetCorners& t, const Vec3& p) {
   return {1.0 - l[0] - l[1] - l[2], l[0], l[1], l[2]};
 }
 
+// A node held in all three directions (a fixed body's) does not oscillate: its contact
+// stiffness does not limit the step.
+bool held(const Model& m, std::int32_t n) {
+  return m.dof_mode[3 * n] != 0 && m.dof_mode[3 * n + 1] != 0 && m.dof_mode[3 * n + 2] != 0;
+}
+
 }  // namespace
 
 BodyContact::BodyContact(const Model& m) : verlet_(buffer_for(m)) {
@@ -103,7 +109,7 @@ void BodyContact::update_candidates(const Model& m) {
   for (const Pair& p : pairs_)
     for (std::uint32_t t : {p.i, p.j})
       for (std::int32_t n : m.contact_tets[t])
-        if (m.mass[n] > 0.0)
+        if (m.mass[n] > 0.0 && !held(m, n))
           near_k_over_m_ = std::max(near_k_over_m_, node_contact_stiffness_[n] / m.mass[n]);
   // A pair that drops out of the list is far apart: its spring was released when it stopped
   // touching (evaluate() zeroes it then), so nothing is lost here.
@@ -217,7 +223,7 @@ void BodyContact::compute(const Model& m, double step_dt, std::vector<double>& f
     if (!results_[q].touching) continue;
     for (const auto* t : {&m.contact_tets[pairs_[q].i], &m.contact_tets[pairs_[q].j]})
       for (std::int32_t n : *t) {
-        if (node_stiffness_[n] > 0.0 && m.mass[n] > 0.0)
+        if (node_stiffness_[n] > 0.0 && m.mass[n] > 0.0 && !held(m, n))
           max_k_over_m_ = std::max(max_k_over_m_, node_stiffness_[n] / m.mass[n]);
         node_stiffness_[n] = 0.0;
       }

@@ -169,7 +169,6 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
     results.write_frame(sim.time(), FrameFields{disp, m.v, s6, vm, pr, ep});
   };
   std::vector<RestitutionTracker> restitution(m.bodies.size());
-  std::vector<double> max_eqps(m.bodies.size(), 0.0);
   auto write_history = [&]() {
     const Energies e = sim.energies();
     row.assign({sim.time(), sim.dt(), e.kinetic, e.internal, e.plastic_dissipation, e.contact,
@@ -231,7 +230,8 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
       bs.kinetic_energy = s.kinetic_energy;
       bs.bbox_min = {s.bbox_min.x(), s.bbox_min.y(), s.bbox_min.z()};
       bs.bbox_max = {s.bbox_max.x(), s.bbox_max.y(), s.bbox_max.z()};
-      bs.max_equivalent_plastic_strain = max_eqps[b];
+      // equivalent plastic strain never decreases: its value now is the run's maximum
+      bs.max_equivalent_plastic_strain = s.max_equivalent_plastic_strain;
       bs.coefficient_of_restitution = restitution[b].result();
       summary.bodies.push_back(bs);
     }

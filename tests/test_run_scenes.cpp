@@ -162,6 +162,39 @@ TEST(Scenes, ObliqueImpactFollowsRigidBodyTheory) {
   }
 }
 
+// summary.json's maximum equivalent plastic strain of a yielding body is the largest over its
+// Gauss points: at least the largest element average written in the last frame, and of the
+// same size (a coarse Taylor bar, 10 us).
+TEST(Scenes, SummaryReportsTheMaximumPlasticStrain) {
+  const fs::path out = out_dir("taylor_short");
+  const Result r =
+      run_femdem("run '" + scene("taylor_bar.toml") + "' --quiet --out '" + out.string() +
+                 "' --set bodies.rod.mesh.element_size=3.2e-3 --set "
+                 "simulation.end_time=10e-6 --set simulation.output_interval=5e-6");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto s = read_json(out / "summary.json");
+  const double reported = s["bodies"]["rod"]["max_equivalent_plastic_strain"].get<double>();
+  hid_t f = H5Fopen((out / "results.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  hid_t d = H5Dopen(f, "/frames/equivalent_plastic_strain", H5P_DEFAULT);
+  hid_t sp = H5Dget_space(d);
+  hsize_t dims[2];
+  H5Sget_simple_extent_dims(sp, dims, nullptr);
+  std::vector<double> all(dims[0] * dims[1]);
+  EXPECT_GE(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, all.data()), 0);
+  H5Sclose(sp);
+  H5Dclose(d);
+  H5Fclose(f);
+  double last_frame_max = 0.0;
+  for (hsize_t e = 0; e < dims[1]; ++e)
+    last_frame_max = std::max(last_frame_max, all[(dims[0] - 1) * dims[1] + e]);
+  std::printf("max eq. plastic strain: summary %.4f, largest element average %.4f\n", reported,
+              last_frame_max);
+  EXPECT_GT(last_frame_max, 0.1);
+  EXPECT_GE(reported, last_frame_max);
+  EXPECT_LT(reported, 2.0 * last_frame_max);
+}
+
 // The same run with 1 and 2 threads gives the same bits (deterministic gather).
 TEST(Scenes, OneAndTwoThreadsGiveIdenticalResults) {
   std::string args =
