@@ -219,6 +219,8 @@ void BodyContact::compute(const Model& m, double step_dt, std::vector<double>& f
       node_stiffness_[tb[c]] += r.stiffness;
     }
   }
+  pair_evaluations_ += static_cast<std::int64_t>(pairs_.size());
+  touching_evaluations_ += static_cast<std::int64_t>(touching_);
   for (std::size_t q = 0; q < pairs_.size(); ++q) {
     if (!results_[q].touching) continue;
     for (const auto* t : {&m.contact_tets[pairs_[q].i], &m.contact_tets[pairs_[q].j]})

@@ -46,6 +46,9 @@ class BodyContact {
   std::size_t candidate_pairs() const { return pairs_.size(); }
   std::size_t touching_pairs() const { return touching_; }
   std::int64_t broadphase_runs() const { return broadphase_runs_; }
+  // Totals over the run: candidate pairs evaluated, and those found touching.
+  std::int64_t pair_evaluations() const { return pair_evaluations_; }
+  std::int64_t touching_evaluations() const { return touching_evaluations_; }
 
  private:
   struct Pair {
@@ -83,6 +86,7 @@ class BodyContact {
   double energy_ = 0.0, dissipated_ = 0.0, max_k_over_m_ = 0.0;
   std::size_t touching_ = 0;
   std::int64_t broadphase_runs_ = 0;
+  std::int64_t pair_evaluations_ = 0, touching_evaluations_ = 0;
 };
 
 }  // namespace femdem

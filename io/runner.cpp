@@ -206,6 +206,13 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
     summary.extra["loop_time_s"] =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
     summary.extra["stable_time_step"] = sim.stable_dt();
+    if (sim.body_contact().active()) {
+      summary.extra["broadphase_runs"] = static_cast<double>(sim.body_contact().broadphase_runs());
+      summary.extra["contact_pair_evaluations"] =
+          static_cast<double>(sim.body_contact().pair_evaluations());
+      summary.extra["contact_touching_pair_evaluations"] =
+          static_cast<double>(sim.body_contact().touching_evaluations());
+    }
     summary.energy = {.kinetic = e.kinetic,
                       .internal = e.internal,
                       .plastic_dissipation = e.plastic_dissipation,
