@@ -27,7 +27,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 
 def thornton(v, vy):
-    r = vy / np.asarray(v, dtype=float)
+    r = np.minimum(vy / np.asarray(v, dtype=float), 1.0)  # e = 1 below V_y
     e = (math.sqrt(6.0 * math.sqrt(3.0) / 5.0) * np.sqrt(1.0 - r * r / 6.0)
          * (r / (r + 2.0 * np.sqrt(1.2 - r * r / 5.0))) ** 0.25)
     return np.where(r < 1.0, e, 1.0)
@@ -85,7 +85,7 @@ def main():
     ax.plot([20, 50], [0.87, 0.71], "s", color="k", mfc="none", label="thesis")
     ax.set_xlabel("impact speed [m/s]")
     ax.set_ylabel("coefficient of restitution (centre of mass)")
-    ax.set_ylim(0.4, 1.05)
+    ax.set_ylim(0.0, 1.05)
     ax.legend(fontsize=8)
     fig.tight_layout()
     out = args.out or os.path.join(os.path.dirname(os.path.abspath(args.csv)), "thornton_fit.png")
