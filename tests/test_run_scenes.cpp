@@ -20,6 +20,7 @@
 #include <thread>
 #include <vector>
 
+#include "support/history_csv.hpp"
 #include "support/run_command.hpp"
 
 namespace {
@@ -43,22 +44,7 @@ std::string scene(const std::string& name) {
 }
 
 // history.csv as columns
-std::map<std::string, std::vector<double>> read_history(const fs::path& path) {
-  std::ifstream in(path);
-  std::string line;
-  std::getline(in, line);
-  std::vector<std::string> names;
-  std::stringstream hs(line);
-  for (std::string c; std::getline(hs, c, ',');) names.push_back(c);
-  std::map<std::string, std::vector<double>> cols;
-  while (std::getline(in, line)) {
-    std::stringstream ls(line);
-    std::size_t i = 0;
-    for (std::string c; std::getline(ls, c, ',') && i < names.size(); ++i)
-      cols[names[i]].push_back(std::stod(c));
-  }
-  return cols;
-}
+using femdem::test::read_history;
 
 nlohmann::json read_json(const fs::path& path) {
   std::ifstream in(path);
