@@ -57,12 +57,12 @@ struct Model {
 
   // --- nodes (3 doubles per node for vectors) ---
   std::int32_t node_count = 0;
-  std::vector<double> X;       // reference coordinates
-  std::vector<double> x;       // current coordinates
-  std::vector<double> v;       // velocity (at the half step between updates)
-  std::vector<double> f_int;   // internal force (element stresses), gathered
-  std::vector<double> f_wall;  // wall contact force
-  std::vector<double> mass;    // lumped (HRZ), one per node
+  std::vector<double> X;          // reference coordinates
+  std::vector<double> x;          // current coordinates
+  std::vector<double> v;          // velocity (at the half step between updates)
+  std::vector<double> f_int;      // internal force (element stresses), gathered
+  std::vector<double> f_contact;  // contact force: walls and other bodies
+  std::vector<double> mass;       // lumped (HRZ), one per node
   std::vector<std::int32_t> node_body;
   std::vector<std::uint8_t> dof_mode;  // 3 per node: 0 free, 1 fixed, 2 prescribed velocity
   std::vector<double> dof_velocity;    // 3 per node: prescribed velocity where dof_mode == 2

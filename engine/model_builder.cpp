@@ -78,7 +78,7 @@ Model build_model(const ModelSpec& spec) {
   m.dof_mode.assign(3 * nn, 0);
   m.dof_velocity.assign(3 * nn, 0.0);
   m.f_int.assign(3 * nn, 0.0);
-  m.f_wall.assign(3 * nn, 0.0);
+  m.f_contact.assign(3 * nn, 0.0);
   m.conn.resize(ne);
   m.element_body.resize(ne);
   m.element_material.resize(ne);

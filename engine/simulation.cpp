@@ -220,7 +220,7 @@ void Simulation::compute_forces(double step_dt) {
 
   // 3. rigid walls: penalty on boundary nodes, Coulomb friction by a tangential spring per
   // (node, wall) that slips at mu times the normal force
-  std::fill(m.f_wall.begin(), m.f_wall.end(), 0.0);
+  std::fill(m.f_contact.begin(), m.f_contact.end(), 0.0);
   double contact = 0.0, damping_power = 0.0, friction_dissipated = 0.0;
   for (auto& w : m.walls) w.force.setZero();
   if (!m.walls.empty()) {
@@ -279,14 +279,14 @@ void Simulation::compute_forces(double step_dt) {
           contact += 0.5 * k * u.squaredNorm();
           slip[0] = u[0], slip[1] = u[1], slip[2] = u[2];
         }
-        for (int c = 0; c < 3; ++c) m.f_wall[3 * s.node + c] += f[c];
+        for (int c = 0; c < 3; ++c) m.f_contact[3 * s.node + c] += f[c];
         w.force -= f;
       }
     }
   }
-  // 3b. contact between bodies (adds to f_wall: the force of walls and other bodies)
+  // 3b. contact between bodies (adds to f_contact, after the walls)
   if (body_contact_.active()) {
-    body_contact_.compute(m, step_dt, m.f_wall);
+    body_contact_.compute(m, step_dt, m.f_contact);
     contact += body_contact_.energy();
     friction_dissipated += body_contact_.dissipated();
   }
@@ -300,7 +300,7 @@ void Simulation::compute_forces(double step_dt) {
     const double mass = m.mass[n];
     for (int k = 0; k < 3; ++k) {
       const std::size_t i = 3 * static_cast<std::size_t>(n) + k;
-      const double f = m.f_wall[i] - m.f_int[i] + mass * g[k];
+      const double f = m.f_contact[i] - m.f_int[i] + mass * g[k];
       if (m.dof_mode[i] == 0) {
         accel_[i] = f / mass;
         reaction_[i] = 0.0;
@@ -504,7 +504,7 @@ BodyState Simulation::body_motion(int bi) const {
   }
   // contact acts on boundary nodes and, through the contact sub-tets, on nodes just inside
   for (std::int32_t n = b.first_node; n < b.first_node + b.node_count; ++n)
-    s.contact_force += Vec3(m.f_wall[3 * n], m.f_wall[3 * n + 1], m.f_wall[3 * n + 2]);
+    s.contact_force += Vec3(m.f_contact[3 * n], m.f_contact[3 * n + 1], m.f_contact[3 * n + 2]);
   s.com /= msum;
   s.vcom /= msum;
   return s;
@@ -527,7 +527,7 @@ BodyState Simulation::body_state(int bi) const {
     s.com += mn * p;
     s.vcom += mn * v;
     s.kinetic_energy += 0.5 * mn * v.squaredNorm();
-    s.contact_force += Vec3(m.f_wall[3 * n], m.f_wall[3 * n + 1], m.f_wall[3 * n + 2]);
+    s.contact_force += Vec3(m.f_contact[3 * n], m.f_contact[3 * n + 1], m.f_contact[3 * n + 2]);
     s.bbox_min = s.bbox_min.cwiseMin(p);
     s.bbox_max = s.bbox_max.cwiseMax(p);
   }
