@@ -168,11 +168,11 @@ TEST(SweepValues, Errors) {
 // 2 x 2: four rows, the right varied values, every number equal to the run's own summary.json.
 TEST(Sweep, TwoByTwoMatchesEachRunsSummary) {
   const fs::path d = tmp_dir("two_by_two");
-  const Result r = femdem_in(
-      d, "sweep '" + bar_scene() +
-             "' --vary materials.bar.youngs_modulus=100,400"
-             " --vary 'bodies.bar.velocity=[1e-4,0,0],[2e-4,0,0]' --out s --jobs 2" +
-             kShortBar);
+  const Result r =
+      femdem_in(d, "sweep '" + bar_scene() +
+                       "' --vary materials.bar.youngs_modulus=100,400"
+                       " --vary 'bodies.bar.velocity=[1e-4,0,0],[2e-4,0,0]' --out s --jobs 2" +
+                       kShortBar);
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_TRUE(contains(r.output, "[4/4]")) << r.output;
   const Csv csv = read_csv(d / "s" / "sweep.csv");
@@ -234,6 +234,45 @@ TEST(Sweep, VariedValuesChangeThePhysics) {
   EXPECT_NEAR(ke(1) / ke(0), 2.0, 1e-9);
   EXPECT_NEAR(ke(3) / ke(0), 8.0, 1e-9);
   EXPECT_NEAR(num(csv.rows[3].at("energy.kinetic")), ke(3), 1e-12 * ke(3));
+}
+
+// A string-valued axis (which material a body is made of) crossed with a numeric one: plain and
+// quoted strings both work, the CSV keeps the values as given, the folders are named after them.
+TEST(Sweep, StringValuesSelectTheBodysMaterial) {
+  const fs::path d = tmp_dir("strings");
+  std::ofstream(d / "cube.toml") << kFreeCube << R"(
+[[materials]]
+name = "light"
+model = "von_mises"
+density = 2000
+youngs_modulus = 40e9
+poisson_ratio = 0.17
+yield_stress = 60e6
+)";
+  const Result r = femdem_in(d,
+                             "sweep cube.toml --vary 'bodies.cube.material=steel,\"light\"'"
+                             " --vary 'bodies.cube.velocity=[1,0,0],[2,0,0]' --no-plot --quiet");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const Csv csv = read_csv(d / "out" / "cube_sweep" / "sweep.csv");
+  ASSERT_EQ(csv.rows.size(), 4u);
+  EXPECT_EQ(csv.header[0], "bodies.cube.material");
+  EXPECT_EQ(csv.rows[0].at("bodies.cube.material"), "steel");
+  EXPECT_EQ(csv.rows[3].at("bodies.cube.material"), "\"light\"");
+  EXPECT_EQ(csv.rows[0].at("run"), "material=steel__velocity=1,0,0");
+  EXPECT_EQ(csv.rows[3].at("run"), "material=light__velocity=2,0,0");
+  // the mass follows the material: 8000 and 2000 kg/m^3 times 1e-3 m^3
+  EXPECT_NEAR(num(csv.rows[0].at("bodies.cube.mass")), 8.0, 1e-9);
+  EXPECT_NEAR(num(csv.rows[2].at("bodies.cube.mass")), 2.0, 1e-9);
+  EXPECT_NEAR(num(csv.rows[3].at("bodies.cube.kinetic_energy")), 0.5 * 2.0 * 4.0, 1e-9);
+  const std::string log = read_text(d / "out" / "cube_sweep" / csv.rows[2].at("run") / "run.log");
+  EXPECT_TRUE(contains(log, "material = \"light\"")) << log;
+  // a material that does not exist is named before anything runs
+  const Result bad = femdem_in(d,
+                               "sweep cube.toml --vary bodies.cube.material=steel,concrete"
+                               " --out bad --no-plot");
+  EXPECT_EQ(bad.code, 2) << bad.output;
+  EXPECT_TRUE(contains(bad.output, "concrete")) << bad.output;
+  EXPECT_FALSE(fs::exists(d / "bad"));
 }
 
 TEST(Sweep, BadKeyOrValueRunsNothing) {
@@ -326,9 +365,10 @@ TEST(Sweep, JobsDoNotChangeTheNumbers) {
 // A run that diverges: exit code 3, its row says so, the other runs are in the CSV.
 TEST(Sweep, DivergedRunGivesExitCode3) {
   const fs::path d = tmp_dir("diverged");
-  const Result r = femdem_in(d, "sweep '" + bar_scene() +
-                                    "' --set simulation.end_time=0.5 --set simulation.output_interval=0.25"
-                                    " --vary simulation.time_step=5e-3,0.05 --out s --no-plot");
+  const Result r =
+      femdem_in(d, "sweep '" + bar_scene() +
+                       "' --set simulation.end_time=0.5 --set simulation.output_interval=0.25"
+                       " --vary simulation.time_step=5e-3,0.05 --out s --no-plot");
   EXPECT_EQ(r.code, 3) << r.output;
   EXPECT_TRUE(contains(r.output, "DIVERGED")) << r.output;
   const Csv csv = read_csv(d / "s" / "sweep.csv");
