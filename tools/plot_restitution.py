@@ -103,7 +103,7 @@ def main():
     for m in results:
         results[m].sort()
 
-    fig, ax = plt.subplots(figsize=(7.5, 5))
+    fig, ax = plt.subplots(figsize=(9.5, 5))
     colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     for i, (material, pts) in enumerate(results.items()):
         color = colors[i % len(colors)]
@@ -121,7 +121,7 @@ def main():
     ax.set_ylabel("coefficient of restitution (ball's centre of mass)")
     ax.set_title("Steel ball on a concrete prism (thesis ch. 5)")
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=7, ncol=2)
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0))
     fig.tight_layout()
     out = args.out or os.path.join(os.path.dirname(os.path.abspath(args.csv)), "restitution.png")
     fig.savefig(out, dpi=130)
