@@ -21,7 +21,9 @@ stress of the whole run is printed too.
 Band: in the last frame of results.h5, the elements with the largest equivalent plastic strain
 (the top 5 %, at least 20) define a plane by a least-squares fit (principal axes of their
 deformed centroids, weighted by the plastic strain); its angle to the horizontal is the band
-angle. The picture is a cut through the axis, perpendicular to that plane, coloured by
+angle. The ratio of their spread across the plane to their spread along it is printed as the
+thickness ratio: a band gives a small one (below about 0.3), plasticity spread through the
+body (barrelling, no band) a large one, and the angle then means nothing. The picture is a cut through the axis, perpendicular to that plane, coloured by
 equivalent plastic strain, with the fitted and the theoretical lines.
 
 Writes OUT_DIR/compression_curve.png and OUT_DIR/compression_band.png (or into --figures DIR)
@@ -178,7 +180,9 @@ def main():
             print(f"band (last frame, t = {1e3 * res['frame_time']:.3f} ms, strain "
                   f"{res['frame_strain']:.4f}, max eqps {res['max_eqps']:.4f}): fitted angle "
                   f"{res['band_angle_deg']:.1f} deg to the horizontal (theory {angle_th:g}), "
-                  f"thickness ratio {res['band_thickness_ratio']:.2f}")
+                  f"thickness ratio {res['band_thickness_ratio']:.2f}"
+                  + (" (not a planar band: the fit means nothing)"
+                     if res["band_thickness_ratio"] > 0.3 else ""))
         else:
             print("no plastic strain in the last frame")
 
@@ -225,7 +229,7 @@ def plot_band(figs, X, conn, u, eqps, n, c, angle_th, res, R):
     slab = np.abs(q) < 0.75 * h
     s = (cent[slab] - axis_xy) @ e_s
     z = cent[slab, 2]
-    fig, ax = plt.subplots(figsize=(5.2, 8))
+    fig, ax = plt.subplots(figsize=(6, 8))
     tri = mtri.Triangulation(1e3 * s, 1e3 * z)
     # drop long triangles spanning outside the body
     pts = np.c_[tri.x, tri.y][tri.triangles]
