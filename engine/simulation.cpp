@@ -50,6 +50,10 @@ Simulation::Simulation(Model model) : model_(std::move(model)), body_contact_(mo
     c.model = p.model;
     c.elastic = ElasticModel{p.lame_lambda(), p.shear_modulus()};
     if (p.model == MaterialModel::VonMises) c.von_mises = make_von_mises(p);
+    if (p.model == MaterialModel::DruckerPrager) c.drucker_prager = make_drucker_prager(p);
+    if (p.model == MaterialModel::MohrCoulomb) c.mohr_coulomb = make_mohr_coulomb(p);
+    if (p.model == MaterialModel::PiecewiseDruckerPrager)
+      c.piecewise_drucker_prager = make_piecewise_drucker_prager(p);
     c.wave_speed = std::sqrt(p.p_wave_modulus() / p.density);
     c.density = p.density;
     compiled_.push_back(std::move(c));
@@ -136,6 +140,18 @@ void Simulation::compute_forces(double step_dt) {
       case MaterialModel::VonMises:
         r = tet10_internal_forces(xe, dN, w, cm.von_mises, fbar, st, step_dt, fe, sig, cJ, q,
                                   m.subtet_volume0[e]);
+        break;
+      case MaterialModel::DruckerPrager:
+        r = tet10_internal_forces(xe, dN, w, cm.drucker_prager, fbar, st, step_dt, fe, sig, cJ, q,
+                                  m.subtet_volume0[e]);
+        break;
+      case MaterialModel::MohrCoulomb:
+        r = tet10_internal_forces(xe, dN, w, cm.mohr_coulomb, fbar, st, step_dt, fe, sig, cJ, q,
+                                  m.subtet_volume0[e]);
+        break;
+      case MaterialModel::PiecewiseDruckerPrager:
+        r = tet10_internal_forces(xe, dN, w, cm.piecewise_drucker_prager, fbar, st, step_dt, fe,
+                                  sig, cJ, q, m.subtet_volume0[e]);
         break;
     }
     elem_energy_[e] = r.min_J > 0.0 ? r.energy : -HUGE_VAL;

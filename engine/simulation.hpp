@@ -9,6 +9,9 @@
 
 #include "engine/body_contact.hpp"
 #include "engine/model.hpp"
+#include "materials/drucker_prager.hpp"
+#include "materials/mohr_coulomb.hpp"
+#include "materials/piecewise_drucker_prager.hpp"
 #include "materials/von_mises.hpp"
 
 namespace femdem {
@@ -92,6 +95,9 @@ class Simulation {
     MaterialModel model = MaterialModel::Elastic;
     ElasticModel elastic;
     VonMises von_mises;
+    DruckerPrager drucker_prager;
+    MohrCoulomb mohr_coulomb;
+    PiecewiseDruckerPrager piecewise_drucker_prager;
     double wave_speed = 0.0;  // dilatational, sqrt((K + 4G/3) / rho)
     double density = 0.0;
   };

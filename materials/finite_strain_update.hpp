@@ -18,12 +18,17 @@
 // round-off for von Mises. Objective by construction: F -> Q F gives b_e -> Q b_e Q^T, tau ->
 // Q tau Q^T and leaves Cp^-1 unchanged.
 //
-// Interface for return-mapping models (von Mises here; Drucker-Prager, Mohr-Coulomb and the
-// piece-wise Drucker-Prager plug into the same update). A model is any type with
-//   PrincipalReturn return_map(const double e_trial[3], double eps_p_n, double dt) const;
+// Interface for return-mapping models (von Mises, Drucker-Prager, Mohr-Coulomb, the piece-wise
+// Drucker-Prager). A model is any type with
+//   PrincipalReturn return_map(const double e_trial[3], double kappa_n, double dt) const;
 // that takes the trial principal elastic log strains (unsorted, in the eigen-solver's order) and
-// returns, in the SAME order, the principal Kirchhoff stresses and elastic log strains after the
-// return, the new equivalent plastic strain and whether the step was plastic. The elastic law
+// its hardening variable kappa, and returns, in the SAME order, the principal Kirchhoff stresses
+// and elastic log strains after the return, the new kappa and whether the step was plastic.
+// kappa is the model's own variable (von Mises: the equivalent plastic strain; Mohr-Coulomb and
+// Drucker-Prager: de Souza Neto's cohesion-hardening variable). The update keeps, besides, the
+// same equivalent plastic strain for every model, eps_p = sum sqrt(2/3 de_p : de_p) with
+// de_p = e_trial - e_el the principal plastic log-strain increment (coaxial with the trial
+// state), which is what the outputs show. The elastic law
 // must be the linear Hencky law tau_i = lambda tr(e_el) + 2 G e_el,i (every femdem material);
 // the stored energy is then 0.5 tau : e_el. Models needing an ordering (Mohr-Coulomb) sort
 // internally and scatter back. Isotropy makes the result coaxial with the trial state.
@@ -40,13 +45,14 @@ namespace femdem {
 struct GaussPointState {
   double Cp_inv[6] = {1.0, 1.0, 1.0, 0.0, 0.0, 0.0};  // inverse plastic right Cauchy-Green
   double eps_p = 0.0;                                 // equivalent plastic strain
+  double kappa = 0.0;                                 // the model's hardening variable
 };
 
 // What a model's principal-space return mapping gives back (same order as e_trial).
 struct PrincipalReturn {
   double tau[3];   // principal Kirchhoff stresses
   double e_el[3];  // principal elastic log strains after the return
-  double eps_p;    // new equivalent plastic strain
+  double kappa;    // new hardening variable
   bool yielded;    // true if the step was plastic
 };
 
@@ -66,14 +72,14 @@ struct FiniteStrainResult {
 struct ElasticModel {
   double lambda = 0.0;
   double G = 0.0;
-  PrincipalReturn return_map(const double e_trial[3], double eps_p_n, double /*dt*/) const {
+  PrincipalReturn return_map(const double e_trial[3], double kappa_n, double /*dt*/) const {
     PrincipalReturn r;
     const double tr = e_trial[0] + e_trial[1] + e_trial[2];
     for (int i = 0; i < 3; ++i) {
       r.tau[i] = lambda * tr + 2.0 * G * e_trial[i];
       r.e_el[i] = e_trial[i];
     }
-    r.eps_p = eps_p_n;
+    r.kappa = kappa_n;
     r.yielded = false;
     return r;
   }
@@ -127,7 +133,7 @@ inline FiniteStrainResult finite_strain_update(const double F[3][3], GaussPointS
   double e_trial[3];
   for (int i = 0; i < 3; ++i) e_trial[i] = 0.5 * std::log(eig.value[i]);
 
-  const PrincipalReturn ret = model.return_map(e_trial, s.eps_p, dt);
+  const PrincipalReturn ret = model.return_map(e_trial, s.kappa, dt);
 
   FiniteStrainResult r;
   assemble_from_principal(ret.tau, eig.vector, r.tau);
@@ -135,7 +141,12 @@ inline FiniteStrainResult finite_strain_update(const double F[3][3], GaussPointS
   r.yielded = ret.yielded;
   r.dissipation = 0.0;
   if (ret.yielded) {
-    for (int i = 0; i < 3; ++i) r.dissipation += ret.tau[i] * (e_trial[i] - ret.e_el[i]);
+    double dep2 = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      const double dep = e_trial[i] - ret.e_el[i];
+      r.dissipation += ret.tau[i] * dep;
+      dep2 += dep * dep;
+    }
     const double be_p[3] = {std::exp(2.0 * ret.e_el[0]), std::exp(2.0 * ret.e_el[1]),
                             std::exp(2.0 * ret.e_el[2])};
     double be[6];
@@ -143,7 +154,8 @@ inline FiniteStrainResult finite_strain_update(const double F[3][3], GaussPointS
     double Fi[3][3];
     detail::inverse3(F, Fi);
     detail::push_forward_sym(Fi, be, s.Cp_inv);
-    s.eps_p = ret.eps_p;
+    s.eps_p += std::sqrt(2.0 / 3.0 * dep2);
+    s.kappa = ret.kappa;
   }
   return r;
 }

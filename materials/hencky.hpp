@@ -16,8 +16,8 @@
 namespace femdem {
 
 struct HenckyResult {
-  double tau[6];        // Kirchhoff stress, xx yy zz xy yz xz
-  double energy;        // stored energy per reference volume
+  double tau[6];  // Kirchhoff stress, xx yy zz xy yz xz
+  double energy;  // stored energy per reference volume
 };
 
 // Principal log strains of b (elastic left Cauchy-Green tensor, 6 components) and its frame.
@@ -52,8 +52,7 @@ inline HenckyResult hencky_stress(const double b[6], double lambda, double G) {
   for (int i = 0; i < 3; ++i) t[i] = lambda * tr + 2.0 * G * p.e[i];
   HenckyResult r;
   assemble_from_principal(t, p.n, r.tau);
-  r.energy = 0.5 * lambda * tr * tr +
-             G * (p.e[0] * p.e[0] + p.e[1] * p.e[1] + p.e[2] * p.e[2]);
+  r.energy = 0.5 * lambda * tr * tr + G * (p.e[0] * p.e[0] + p.e[1] * p.e[1] + p.e[2] * p.e[2]);
   return r;
 }
 

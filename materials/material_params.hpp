@@ -7,7 +7,11 @@
 
 namespace femdem {
 
-enum class MaterialModel { Elastic, VonMises };
+enum class MaterialModel { Elastic, VonMises, DruckerPrager, MohrCoulomb, PiecewiseDruckerPrager };
+
+// Which Drucker-Prager cone matches the Mohr-Coulomb (cohesion, friction_angle) of a scene
+// (materials/drucker_prager.hpp).
+enum class DruckerPragerCone { Outer, Inner, PlaneStrain, Inscribed };
 
 // von Mises hardening law (materials/von_mises.hpp). A scene picks it by its keys:
 // hardening_modulus (or none) -> Linear, hardening_curve -> Tabulated, swift_K -> Swift.
@@ -34,11 +38,55 @@ struct MaterialParams {
   double jc_C = 0.0;
   double jc_epsdot0 = 1.0;  // 1/s
 
+  // Mohr-Coulomb and Drucker-Prager. Angles in degrees, cohesion in Pa.
+  double cohesion = 0.0;
+  double friction_angle = 0.0;
+  double dilatancy_angle = 0.0;             // = friction_angle: associated flow
+  double cohesion_hardening_modulus = 0.0;  // dc/dkappa; < 0 softens
+  double residual_cohesion = 0.0;           // floor of c when softening
+  DruckerPragerCone cone = DruckerPragerCone::Outer;
+
+  // Piece-wise Drucker-Prager: pieces [A, B] (B in Pa), tension apex first, and the constant
+  // dilatancy A_bar of its flow potential.
+  std::vector<std::pair<double, double>> pieces;
+  double pieces_dilatancy = 0.0;
+
   double shear_modulus() const { return youngs_modulus / (2.0 * (1.0 + poisson_ratio)); }
   double bulk_modulus() const { return youngs_modulus / (3.0 * (1.0 - 2.0 * poisson_ratio)); }
   double lame_lambda() const { return bulk_modulus() - 2.0 / 3.0 * shear_modulus(); }
   // P-wave (constrained) modulus K + 4G/3: sets the dilatational wave speed and the stable step.
   double p_wave_modulus() const { return bulk_modulus() + 4.0 / 3.0 * shear_modulus(); }
 };
+
+// The scene file's name of a model (`model = "..."`).
+inline const char* material_model_name(MaterialModel m) {
+  switch (m) {
+    case MaterialModel::Elastic:
+      return "elastic";
+    case MaterialModel::VonMises:
+      return "von_mises";
+    case MaterialModel::DruckerPrager:
+      return "drucker_prager";
+    case MaterialModel::MohrCoulomb:
+      return "mohr_coulomb";
+    case MaterialModel::PiecewiseDruckerPrager:
+      return "piecewise_drucker_prager";
+  }
+  return "?";
+}
+
+inline const char* drucker_prager_cone_name(DruckerPragerCone c) {
+  switch (c) {
+    case DruckerPragerCone::Outer:
+      return "outer";
+    case DruckerPragerCone::Inner:
+      return "inner";
+    case DruckerPragerCone::PlaneStrain:
+      return "plane_strain";
+    case DruckerPragerCone::Inscribed:
+      return "inscribed";
+  }
+  return "?";
+}
 
 }  // namespace femdem

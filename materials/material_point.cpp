@@ -3,6 +3,9 @@
 
 #include <string>
 
+#include "materials/drucker_prager.hpp"
+#include "materials/mohr_coulomb.hpp"
+#include "materials/piecewise_drucker_prager.hpp"
 #include "materials/von_mises.hpp"
 
 namespace femdem {
@@ -22,6 +25,21 @@ std::vector<MaterialPointStep> with_model(const MaterialParams& m, Fn&& f) {
       const std::string err = von_mises_param_error(m);
       if (!err.empty()) throw MaterialPointError("material '" + m.name + "': " + err);
       return f(make_von_mises(m));
+    }
+    case MaterialModel::DruckerPrager: {
+      const std::string err = drucker_prager_param_error(m);
+      if (!err.empty()) throw MaterialPointError("material '" + m.name + "': " + err);
+      return f(make_drucker_prager(m));
+    }
+    case MaterialModel::MohrCoulomb: {
+      const std::string err = mohr_coulomb_param_error(m);
+      if (!err.empty()) throw MaterialPointError("material '" + m.name + "': " + err);
+      return f(make_mohr_coulomb(m));
+    }
+    case MaterialModel::PiecewiseDruckerPrager: {
+      const std::string err = piecewise_drucker_prager_param_error(m);
+      if (!err.empty()) throw MaterialPointError("material '" + m.name + "': " + err);
+      return f(make_piecewise_drucker_prager(m));
     }
   }
   throw MaterialPointError("material '" + m.name + "': unknown material model");

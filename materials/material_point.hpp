@@ -197,7 +197,7 @@ std::vector<MaterialPointStep> drive_mixed(const Model& model, const std::vector
   return out;
 }
 
-// The same drivers for a material as a scene defines it (Elastic or VonMises); throws
+// The same drivers for a material as a scene defines it (any model); throws
 // MaterialPointError for a model it does not know or invalid constants.
 std::vector<MaterialPointStep> drive_deformation(const MaterialParams& material,
                                                  const std::vector<F3>& path, int substeps = 1,

@@ -142,7 +142,7 @@ struct VonMises {
     double H;
     const double sy = flow_stress(eps_p_n, &H);
     const double f = q_trial - sy;
-    r.eps_p = eps_p_n;
+    r.kappa = eps_p_n;
     if (!(f > 1e-12 * sy) || q_trial <= 0.0) {
       for (int i = 0; i < 3; ++i) {
         r.tau[i] = p + 2.0 * G * ed[i];
@@ -161,7 +161,7 @@ struct VonMises {
       r.e_el[i] = em + factor * ed[i];
       r.tau[i] = p + 2.0 * G * factor * ed[i];
     }
-    r.eps_p = eps_p_n + dgamma;
+    r.kappa = eps_p_n + dgamma;
     r.yielded = true;
     return r;
   }

@@ -436,7 +436,7 @@ TEST(VonMisesHardening, JohnsonCookRateFactor) {
     const PrincipalReturn r = vm.return_map(e_trial, 0.0, dt);
     const PrincipalReturn r0 = make_von_mises(slow_params).return_map(e_trial, 0.0, dt);
     ASSERT_TRUE(r.yielded);
-    const double dg = r.eps_p;
+    const double dg = r.kappa;
     const double rate = (dt > 0.0) ? dg / dt : 0.0;
     const double R = 1.0 + 0.025 * std::log(std::fmax(1.0, rate / 1.0));
     double H;
@@ -447,7 +447,7 @@ TEST(VonMisesHardening, JohnsonCookRateFactor) {
                 q / kMPa, q0 / kMPa);
     EXPECT_NEAR(q, sy, 1e-10 * sy);
     if (rate <= 1.0) {
-      EXPECT_NEAR(r.eps_p, r0.eps_p, 1e-15);
+      EXPECT_NEAR(r.kappa, r0.kappa, 1e-15);
     }
     if (rate > 10.0) {
       EXPECT_GT(q, 1.05 * q0);

@@ -76,8 +76,24 @@ void print_summary(const femdem::SceneFile& scene) {
     const double cs = std::sqrt(mat.shear_modulus() / mat.density);
     const bool plastic = mat.model == femdem::MaterialModel::VonMises;
     fmt::print("  {}: {}, density {:g} kg/m^3, E = {:g} Pa, nu = {:g}\n", mat.name,
-               plastic ? "von_mises" : "elastic", mat.density, mat.youngs_modulus,
+               femdem::material_model_name(mat.model), mat.density, mat.youngs_modulus,
                mat.poisson_ratio);
+    if (mat.model == femdem::MaterialModel::MohrCoulomb ||
+        mat.model == femdem::MaterialModel::DruckerPrager) {
+      fmt::print("    cohesion {:g} Pa, friction angle {:g} deg, dilatancy angle {:g} deg\n",
+                 mat.cohesion, mat.friction_angle, mat.dilatancy_angle);
+      if (mat.model == femdem::MaterialModel::DruckerPrager)
+        fmt::print("    cone matched to Mohr-Coulomb: {}\n",
+                   femdem::drucker_prager_cone_name(mat.cone));
+      if (mat.cohesion_hardening_modulus != 0.0)
+        fmt::print("    cohesion hardening {:g} Pa, residual cohesion {:g} Pa\n",
+                   mat.cohesion_hardening_modulus, mat.residual_cohesion);
+    }
+    if (mat.model == femdem::MaterialModel::PiecewiseDruckerPrager) {
+      fmt::print("    {} pieces [A, B Pa]:", mat.pieces.size());
+      for (const auto& [a, b] : mat.pieces) fmt::print(" [{:g}, {:g}]", a, b);
+      fmt::print(", dilatancy {:g}\n", mat.pieces_dilatancy);
+    }
     if (plastic) {
       switch (mat.hardening) {
         case femdem::HardeningLaw::Linear:
