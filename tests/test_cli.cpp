@@ -143,9 +143,8 @@ TEST(Cli, BadScenesExitWithTwoNamingFileLineAndKey) {
       {"typo", replace("end_time = 1e-4", "end_tim = 1e-4"),
        "typo.toml:3:1: simulation.end_tim: unknown key 'end_tim' (did you mean 'end_time'?)"},
       {"syntax", replace("end_time = 1e-4", "end_time = = 1e-4"), "syntax.toml:3:"},
-      {"planned_model", replace("\"elastic\"", "\"drucker_prager\""),
-       "planned_model.toml:8:9: materials.steel.model: material model 'drucker_prager' is not "
-       "available yet"},
+      {"model_key_missing", replace("\"elastic\"", "\"drucker_prager\""),
+       "model_key_missing.toml:6:1: materials.steel.cohesion: required value is missing"},
       {"missing_mesh_file",
        replace("generator = \"box\", size = [0.1, 0.1, 0.1], element_size = 0.05",
                "file = \"missing.msh\""),
