@@ -32,6 +32,7 @@ TEST(CylinderCompression, CoarseFrictionlessPeakIsTheUnconfinedStrength) {
       " --set 'walls.top.velocity_history=[[0, 0, 0, 0], [2e-4, 0, 0, -0.1]]'");
   ASSERT_EQ(r.code, 0) << r.output;
   const auto run = femdem::test::read_compression_run(out);
+  EXPECT_EQ(run.model, "mohr_coulomb");
   ASSERT_GT(run.strain.back(), 1.2e-3);
   const double peak = femdem::test::peak_stress(run);
   std::printf("%s: peak %.4f MPa, theory %.4f MPa (%+.2f %%)\n", run.model.c_str(), peak / 1e6,

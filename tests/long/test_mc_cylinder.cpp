@@ -20,7 +20,7 @@
 
 namespace fs = std::filesystem;
 
-TEST(CylinderCompression, PeakAndShearBandOfTheFullScene) {
+TEST(McCylinder, PeakAndShearBandOfTheFullScene) {
   const fs::path out = fs::path(FEMDEM_TEST_TMP) / "long" / "mc_cylinder_compression";
   fs::remove_all(out);
   const auto r =
