@@ -31,7 +31,12 @@ struct Wall {
   Vec3 point0 = Vec3::Zero();  // at t = 0
   Vec3 point = Vec3::Zero();   // now
   Vec3 normal = Vec3(0, 0, 1);
-  Vec3 velocity = Vec3::Zero();
+  Vec3 velocity = Vec3::Zero();  // now
+  // Non-empty: the wall follows this velocity history, point = point0 + its exact integral.
+  std::vector<VelocityPoint> velocity_history;
+  // Mean velocity over the last step (displacement / step), what the nodes' half-step
+  // velocities are measured against; equals `velocity` for a wall moving steadily.
+  Vec3 step_velocity = Vec3::Zero();
   double friction = 0.0;
   double penalty_factor = 100.0;
   double damping = 0.0;       // fraction of critical damping of each node's contact spring

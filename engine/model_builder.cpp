@@ -298,6 +298,9 @@ Model build_model(const ModelSpec& spec) {
     w.point0 = w.point = ws.point;
     w.normal = ws.normal.normalized();
     w.velocity = ws.velocity;
+    w.velocity_history = ws.velocity_history;
+    if (!w.velocity_history.empty()) w.velocity = history_velocity(w.velocity_history, 0.0);
+    w.step_velocity = w.velocity;
     w.friction = ws.friction;
     w.penalty_factor = ws.penalty_factor > 0.0 ? ws.penalty_factor : spec.contact.penalty_factor;
     w.damping = ws.damping;

@@ -10,6 +10,7 @@
 
 #include "elements/fbar_mode.hpp"
 #include "elements/tet10_mesh.hpp"
+#include "engine/wall_motion.hpp"
 #include "materials/material_params.hpp"
 
 namespace femdem {
@@ -53,6 +54,9 @@ struct WallSpec {
   Vec3 point = Vec3::Zero();
   Vec3 normal = Vec3(0, 0, 1);  // normalised by the reader; bodies live on the + side
   Vec3 velocity = Vec3::Zero();
+  // Non-empty: the velocity follows this history instead (engine/wall_motion.hpp) and
+  // `velocity` is ignored.
+  std::vector<VelocityPoint> velocity_history;
   double friction = 0.0;
   double penalty_factor = 0.0;  // 0: ContactSettings::penalty_factor
   // Fraction of critical damping of each node's contact spring. 0 keeps contact elastic; a

@@ -263,7 +263,7 @@ void Simulation::compute_forces(double step_dt) {
           continue;
         }
         double fn = k * d;
-        const Vec3 v_rel = v - w.velocity;
+        const Vec3 v_rel = v - w.step_velocity;
         const double vn = v_rel.dot(w.normal);
         if (w.damping > 0.0) {
           // dashpot on the approach/separation speed (half-step velocity), never pulling
@@ -449,7 +449,18 @@ void Simulation::step(double dt_limit) {
     for (std::int32_t n = 0; n < nn; ++n)
       for (int k = 0; k < 3; ++k) gravity_work += m.mass[n] * g[k] * dt * m.v[3 * n + k];
   }
-  for (auto& w : m.walls) w.point += dt * w.velocity;
+  for (auto& w : m.walls) {
+    if (w.velocity_history.empty()) {
+      w.point += dt * w.velocity;
+    } else {
+      // exact integral of the history; the velocity is the one at the end of the step
+      const Vec3 d0 = history_displacement(w.velocity_history, time_);
+      const Vec3 d1 = history_displacement(w.velocity_history, time_ + dt);
+      w.point = w.point0 + d1;
+      if (dt > 0.0) w.step_velocity = (d1 - d0) / dt;
+      w.velocity = history_velocity(w.velocity_history, time_ + dt);
+    }
+  }
   time_ += dt;
   ++steps_;
 

@@ -3,7 +3,9 @@
 // energy balance says they do, and bodies move as they should.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "engine/simulation.hpp"
 #include "support/kuhn_box.hpp"
@@ -100,4 +102,78 @@ TEST(Loading, MovingWallWorkIsAccounted) {
   EXPECT_LT(std::fabs(sim.balance_error()), 2e-3);
   EXPECT_LT(sim.wall_force(0).z(),
             0.0 + 1e-300);  // the block pushes back on the wall (or not at all)
+}
+
+// A wall with a velocity history: its velocity is the piecewise-linear history (held after the
+// last point) and its position the exact integral, whatever the steps.
+TEST(Loading, WallFollowsItsVelocityHistory) {
+  ModelSpec s = block();
+  WallSpec w;
+  w.name = "far";
+  w.point = Vec3(0.5, 0, -1.0);  // far below the block: no contact
+  w.normal = Vec3(0, 0, 1);
+  w.velocity_history = {{0.0, Vec3(0, 0, 0)}, {1e-3, Vec3(0, 0, 1)}, {2e-3, Vec3(2, 0, -1)}};
+  s.walls.push_back(w);
+  Simulation sim(build_model(s));
+  auto expected_z = [](double t) {  // integral of vz, by hand
+    if (t <= 1e-3) return -1.0 + 0.5 * t * t / 1e-3;
+    if (t <= 2e-3) return -1.0 + 0.5e-3 + (t - 1e-3) - (t - 1e-3) * (t - 1e-3) / 1e-3;
+    return -1.0 + 0.5e-3 - (t - 2e-3);
+  };
+  auto expected_x = [](double t) {
+    if (t <= 1e-3) return 0.5;
+    if (t <= 2e-3) return 0.5 + (t - 1e-3) * (t - 1e-3) / 1e-3;
+    return 0.5 + 1e-3 + 2.0 * (t - 2e-3);
+  };
+  int checked = 0;
+  while (sim.time() < 3e-3) {
+    sim.step();
+    const double t = sim.time();
+    const Vec3 p = sim.wall_position(0);
+    ASSERT_NEAR(p.z(), expected_z(t), 1e-15) << "t = " << t;
+    ASSERT_NEAR(p.x(), expected_x(t), 1e-15) << "t = " << t;
+    ASSERT_EQ(p.y(), 0.0);
+    const Vec3 v = sim.model().walls[0].velocity;
+    const double vz = t <= 1e-3 ? t / 1e-3 : (t <= 2e-3 ? 1.0 - 2.0 * (t - 1e-3) / 1e-3 : -1.0);
+    const double vx = t <= 1e-3 ? 0.0 : (t <= 2e-3 ? 2.0 * (t - 1e-3) / 1e-3 : 2.0);
+    ASSERT_NEAR(v.z(), vz, 1e-12) << "t = " << t;
+    ASSERT_NEAR(v.x(), vx, 1e-12) << "t = " << t;
+    ++checked;
+  }
+  EXPECT_GT(checked, 10);
+  EXPECT_EQ(sim.wall_force(0), Vec3::Zero());
+}
+
+// A wall that starts from rest and speeds up pushes the block; the work it does (trapezoidal in
+// its force and velocity) balances the energies, and a wall starting from rest sends a far
+// weaker stress wave than one starting at full speed.
+TEST(Loading, WallWithVelocityHistoryDoesAccountedWork) {
+  auto peak_force = [](bool smooth, double* balance) {
+    ModelSpec s = block();
+    WallSpec w;
+    w.name = "pusher";
+    w.point = Vec3(0, 0, 0);
+    w.normal = Vec3(0, 0, 1);
+    if (smooth)
+      w.velocity_history = {{0.0, Vec3::Zero()}, {1e-3, Vec3(0, 0, 0.5)}};
+    else
+      w.velocity = Vec3(0, 0, 0.5);
+    s.walls.push_back(w);
+    Simulation sim(build_model(s));
+    double peak = 0.0;
+    while (sim.time() < 1e-3) {
+      sim.step();
+      peak = std::max(peak, -sim.wall_force(0).z());
+    }
+    *balance = sim.balance_error();
+    EXPECT_GT(sim.energies().external_work, 0.0);
+    return peak;
+  };
+  double balance_smooth = 0.0, balance_sudden = 0.0;
+  const double smooth = peak_force(true, &balance_smooth);
+  const double sudden = peak_force(false, &balance_sudden);
+  std::printf("pushed block: peak wall force %.4g N from rest, %.4g N at once; balance %.2e\n",
+              smooth, sudden, balance_smooth);
+  EXPECT_LT(std::fabs(balance_smooth), 2e-3);
+  EXPECT_LT(smooth, 0.5 * sudden);
 }

@@ -151,10 +151,18 @@ void print_summary(const femdem::SceneFile& scene) {
     fmt::print("Walls ({})\n", m.walls.size());
     for (const auto& w : m.walls) {
       fmt::print(
-          "  {}: point {}, normal {}, velocity {} m/s, friction {:g}, penalty factor {:g}, "
+          "  {}: point {}, normal {}, {}, friction {:g}, penalty factor {:g}, "
           "damping {:g}\n",
-          w.name, vec(w.point), vec(w.normal), vec(w.velocity), w.friction,
-          w.penalty_factor > 0.0 ? w.penalty_factor : m.contact.penalty_factor, w.damping);
+          w.name, vec(w.point), vec(w.normal),
+          w.velocity_history.empty()
+              ? "velocity " + vec(w.velocity) + " m/s"
+              : fmt::format("velocity history of {} points, from {} m/s at t = 0 to {} m/s "
+                            "from t = {:g} s on",
+                            w.velocity_history.size(), vec(w.velocity_history.front().velocity),
+                            vec(w.velocity_history.back().velocity),
+                            w.velocity_history.back().time),
+          w.friction, w.penalty_factor > 0.0 ? w.penalty_factor : m.contact.penalty_factor,
+          w.damping);
     }
     fmt::print("\n");
   }
