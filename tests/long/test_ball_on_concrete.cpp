@@ -18,28 +18,13 @@
 #include <vector>
 
 #include "support/run_command.hpp"
+#include "support/sweep_csv.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-std::vector<std::string> split_csv_line(const std::string& line) {
-  std::vector<std::string> out;
-  std::string cur;
-  bool quoted = false;
-  for (char c : line) {
-    if (c == '"') {
-      quoted = !quoted;
-    } else if (c == ',' && !quoted) {
-      out.push_back(cur);
-      cur.clear();
-    } else {
-      cur += c;
-    }
-  }
-  out.push_back(cur);
-  return out;
-}
+using femdem::test::split_csv_line;
 
 }  // namespace
 

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "support/run_command.hpp"
+#include "support/sweep_csv.hpp"
 
 namespace {
 
@@ -30,23 +31,7 @@ double thornton(double v, double vy) {
          std::pow(r / (r + 2.0 * std::sqrt(1.2 - r * r / 5.0)), 0.25);
 }
 
-std::vector<std::string> split_csv_line(const std::string& line) {
-  std::vector<std::string> out;
-  std::string cur;
-  bool quoted = false;
-  for (char c : line) {
-    if (c == '"') {
-      quoted = !quoted;
-    } else if (c == ',' && !quoted) {
-      out.push_back(cur);
-      cur.clear();
-    } else {
-      cur += c;
-    }
-  }
-  out.push_back(cur);
-  return out;
-}
+using femdem::test::split_csv_line;
 
 }  // namespace
 
