@@ -8,6 +8,7 @@
 
 #include "engine/element_kernel.hpp"
 #include "engine/errors.hpp"
+#include "materials/symmetric_eigen3.hpp"
 #include "materials/von_mises.hpp"
 
 namespace femdem {
@@ -591,6 +592,20 @@ BodyState Simulation::body_state(int bi) const {
     s.max_equivalent_plastic_strain =
         std::max(s.max_equivalent_plastic_strain, m.gp_state[g].eps_p);
   return s;
+}
+
+double Simulation::max_principal_stress(int bi) const {
+  const Body& b = model_.bodies[bi];
+  const std::int64_t g0 = 4 * static_cast<std::int64_t>(b.first_element);
+  const std::int64_t g1 = g0 + 4 * static_cast<std::int64_t>(b.element_count);
+  double largest = -HUGE_VAL;
+  // max is exact in any order, so the reduction gives the same bits with any thread count
+#pragma omp parallel for schedule(static) \
+    reduction(max                         \
+              : largest) if (g1 - g0 > 4 * kParallelMinElements)
+  for (std::int64_t g = g0; g < g1; ++g)
+    largest = std::max(largest, largest_eigenvalue3(model_.stress.data() + 6 * g));
+  return largest;
 }
 
 void Simulation::element_stress(std::vector<double>& stress6, std::vector<double>& von_mises,

@@ -72,6 +72,9 @@ class Simulation {
   BodyState body_state(int body) const;
   // The cheap part of body_state (no volume, no bounding box), for per-step monitoring.
   BodyState body_motion(int body) const;
+  // Largest principal Cauchy stress (tension positive) over the body's Gauss points now: the
+  // peak tension that cracks concrete, e.g. in the arms of a dropped armour unit.
+  double max_principal_stress(int body) const;
   Vec3 wall_position(int wall) const { return model_.walls[wall].point; }
   Vec3 wall_force(int wall) const { return model_.walls[wall].force; }
 

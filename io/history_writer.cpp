@@ -152,7 +152,7 @@ std::vector<std::string> standard_history_columns(std::span<const std::string> b
   for (const std::string& b : bodies) {
     for (const char* s :
          {".com_x", ".com_y", ".com_z", ".vcom_x", ".vcom_y", ".vcom_z", ".kinetic_energy",
-          ".contact_force_x", ".contact_force_y", ".contact_force_z"}) {
+          ".contact_force_x", ".contact_force_y", ".contact_force_z", ".max_principal_stress"}) {
       c.push_back(b + s);
     }
   }

@@ -169,6 +169,9 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
     results.write_frame(sim.time(), FrameFields{disp, m.v, s6, vm, pr, ep});
   };
   std::vector<RestitutionTracker> restitution(m.bodies.size());
+  // the run's largest principal stress per body, and when, sampled with the history rows
+  std::vector<double> peak_principal(m.bodies.size(), -HUGE_VAL),
+      peak_principal_time(m.bodies.size(), 0.0);
   auto write_history = [&]() {
     const Energies e = sim.energies();
     row.assign({sim.time(), sim.dt(), e.kinetic, e.internal, e.plastic_dissipation, e.contact,
@@ -176,9 +179,12 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
                 e.external_work, e.balance(), sim.balance_error()});
     for (std::size_t b = 0; b < m.bodies.size(); ++b) {
       const BodyState s = sim.body_motion(static_cast<int>(b));
-      row.insert(row.end(),
-                 {s.com.x(), s.com.y(), s.com.z(), s.vcom.x(), s.vcom.y(), s.vcom.z(),
-                  s.kinetic_energy, s.contact_force.x(), s.contact_force.y(), s.contact_force.z()});
+      const double principal = sim.max_principal_stress(static_cast<int>(b));
+      if (principal > peak_principal[b])
+        peak_principal[b] = principal, peak_principal_time[b] = sim.time();
+      row.insert(row.end(), {s.com.x(), s.com.y(), s.com.z(), s.vcom.x(), s.vcom.y(), s.vcom.z(),
+                             s.kinetic_energy, s.contact_force.x(), s.contact_force.y(),
+                             s.contact_force.z(), principal});
     }
     for (std::size_t w = 0; w < m.walls.size(); ++w) {
       const Vec3 f = sim.wall_force(static_cast<int>(w)),
@@ -239,6 +245,8 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
       bs.bbox_max = {s.bbox_max.x(), s.bbox_max.y(), s.bbox_max.z()};
       // equivalent plastic strain never decreases: its value now is the run's maximum
       bs.max_equivalent_plastic_strain = s.max_equivalent_plastic_strain;
+      bs.max_principal_stress = peak_principal[b];
+      bs.max_principal_stress_time = peak_principal_time[b];
       bs.coefficient_of_restitution = restitution[b].result();
       summary.bodies.push_back(bs);
     }

@@ -62,6 +62,8 @@ std::string summary_to_json(const RunSummary& s) {
     jb["bbox_min"] = vec3(b.bbox_min);
     jb["bbox_max"] = vec3(b.bbox_max);
     jb["max_equivalent_plastic_strain"] = b.max_equivalent_plastic_strain;
+    jb["max_principal_stress"] = b.max_principal_stress;
+    jb["max_principal_stress_time"] = b.max_principal_stress_time;
     if (b.coefficient_of_restitution) {
       jb["coefficient_of_restitution"] =
           Json{{"com", b.coefficient_of_restitution->com},

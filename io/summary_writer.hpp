@@ -42,6 +42,10 @@ struct BodySummary {
   double kinetic_energy = 0.0;
   std::array<double, 3> bbox_min{}, bbox_max{};
   double max_equivalent_plastic_strain = 0.0;
+  // Largest principal stress (tension positive) over the body and the run, sampled at the
+  // history rows, and when it occurred.
+  double max_principal_stress = 0.0;
+  double max_principal_stress_time = 0.0;
   std::optional<Restitution> coefficient_of_restitution;  // null unless it touched and left
 };
 

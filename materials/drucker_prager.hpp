@@ -32,6 +32,7 @@
 
 #include "materials/cohesion_hardening.hpp"
 #include "materials/finite_strain_update.hpp"
+#include "materials/hencky.hpp"
 #include "materials/material_params.hpp"
 
 namespace femdem {
@@ -45,12 +46,8 @@ struct DruckerPrager {
 
   PrincipalReturn return_map(const double e_trial[3], double kappa_n, double /*dt*/) const {
     PrincipalReturn r;
-    const double ev = e_trial[0] + e_trial[1] + e_trial[2];
-    const double em = ev / 3.0;
-    const double ed[3] = {e_trial[0] - em, e_trial[1] - em, e_trial[2] - em};
-    const double p_trial = K * ev;
-    // s = 2 G ed, so sqrt(J2) = sqrt(s:s / 2) = G sqrt(2 ed:ed)
-    const double q_trial = G * std::sqrt(2.0 * (ed[0] * ed[0] + ed[1] * ed[1] + ed[2] * ed[2]));
+    const MeridianTrial trial = meridian_trial(e_trial, K, G);
+    const double p_trial = trial.p, q_trial = trial.q;
     const double c_n = cohesion.value(kappa_n);
     const double phi = q_trial + eta * p_trial - xi * c_n;
     r.kappa = kappa_n;
@@ -75,10 +72,7 @@ struct DruckerPrager {
         }
       }
     }
-    for (int i = 0; i < 3; ++i) {
-      r.tau[i] = p + 2.0 * G * factor * ed[i];
-      r.e_el[i] = p / (3.0 * K) + factor * ed[i];
-    }
+    meridian_result(trial, p, factor, K, G, r.tau, r.e_el);
     return r;
   }
 };

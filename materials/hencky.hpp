@@ -56,4 +56,31 @@ inline HenckyResult hencky_stress(const double b[6], double lambda, double G) {
   return r;
 }
 
+// The meridian-plane view of a principal log-strain trial that pressure-dependent models work
+// in: p = K ev and q = sqrt(J2) = sqrt(s:s / 2) = G sqrt(2 ed:ed), since s = 2 G ed.
+struct MeridianTrial {
+  double ed[3];  // deviatoric log strains
+  double p, q;
+};
+
+inline MeridianTrial meridian_trial(const double e[3], double K, double G) {
+  MeridianTrial t;
+  const double ev = e[0] + e[1] + e[2];
+  const double em = ev / 3.0;
+  for (int i = 0; i < 3; ++i) t.ed[i] = e[i] - em;
+  t.p = K * ev;
+  t.q = G * std::sqrt(2.0 * (t.ed[0] * t.ed[0] + t.ed[1] * t.ed[1] + t.ed[2] * t.ed[2]));
+  return t;
+}
+
+// Principal Kirchhoff stress and elastic log strain of a return that keeps the trial's
+// deviatoric direction, scaled by `factor`, and ends at pressure p.
+inline void meridian_result(const MeridianTrial& t, double p, double factor, double K, double G,
+                            double tau[3], double e_el[3]) {
+  for (int i = 0; i < 3; ++i) {
+    tau[i] = p + 2.0 * G * factor * t.ed[i];
+    e_el[i] = p / (3.0 * K) + factor * t.ed[i];
+  }
+}
+
 }  // namespace femdem

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "materials/finite_strain_update.hpp"
+#include "materials/hencky.hpp"
 #include "materials/material_params.hpp"
 
 namespace femdem {
@@ -64,11 +65,8 @@ struct PiecewiseDruckerPrager {
 
   PrincipalReturn return_map(const double e_trial[3], double kappa_n, double /*dt*/) const {
     PrincipalReturn r;
-    const double ev = e_trial[0] + e_trial[1] + e_trial[2];
-    const double em = ev / 3.0;
-    const double ed[3] = {e_trial[0] - em, e_trial[1] - em, e_trial[2] - em};
-    const double p_trial = K * ev;
-    const double q_trial = G * std::sqrt(2.0 * (ed[0] * ed[0] + ed[1] * ed[1] + ed[2] * ed[2]));
+    const MeridianTrial trial = meridian_trial(e_trial, K, G);
+    const double p_trial = trial.p, q_trial = trial.q;
     const double phi = q_trial - q_limit(p_trial);
     r.kappa = kappa_n;
     r.yielded = phi > 1e-12 * (q_trial + std::fabs(A[0] * p_trial) + B[0]);
@@ -88,10 +86,7 @@ struct PiecewiseDruckerPrager {
         r.kappa = kappa_n + dgamma;
       }
     }
-    for (int i = 0; i < 3; ++i) {
-      r.tau[i] = p + 2.0 * G * factor * ed[i];
-      r.e_el[i] = p / (3.0 * K) + factor * ed[i];
-    }
+    meridian_result(trial, p, factor, K, G, r.tau, r.e_el);
     return r;
   }
 };

@@ -23,6 +23,7 @@
 // The eigenvalues are the diagonal of the polished G (Rayleigh quotients), the eigenvectors the
 // columns of Q times the rotations: orthonormal to round-off by construction.
 // Domain: finite entries of magnitude below about 1e300 (m and A - m I must not overflow).
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 
@@ -248,6 +249,24 @@ inline SymEig3 symmetric_eigen3(const double s[6]) {
     for (int k = 0; k < 3; ++k) r.vector[k][i] = Q[k][i];
   }
   return r;
+}
+
+// The largest eigenvalue only, in closed form (the trigonometric solution of the characteristic
+// cubic): for output such as the largest principal stress, where no vectors are needed. Next to
+// two equal eigenvalues acos loses half the digits: about 1e-8 of the matrix norm, ample for
+// output and not used by any return mapping.
+inline double largest_eigenvalue3(const double s[6]) {
+  const double off = s[3] * s[3] + s[4] * s[4] + s[5] * s[5];
+  if (off == 0.0) return std::max(s[0], std::max(s[1], s[2]));
+  const double q = (s[0] + s[1] + s[2]) / 3.0;
+  const double a = s[0] - q, b = s[1] - q, c = s[2] - q;
+  const double p2 = a * a + b * b + c * c + 2.0 * off;
+  const double p = std::sqrt(p2 / 6.0);
+  // det((S - q I) / p) / 2, clamped against round-off to the cosine's range
+  const double det =
+      a * (b * c - s[4] * s[4]) - s[3] * (s[3] * c - s[4] * s[5]) + s[5] * (s[3] * s[4] - b * s[5]);
+  const double r = std::clamp(det / (2.0 * p * p * p), -1.0, 1.0);
+  return q + 2.0 * p * std::cos(std::acos(r) / 3.0);
 }
 
 }  // namespace femdem

@@ -163,7 +163,7 @@ TEST(HistoryWriter, KilledWriterLeavesCompleteLines) {
 TEST(HistoryWriter, StandardColumns) {
   const std::vector<std::string> bodies = {"ball", "plate"}, walls = {"floor"};
   const auto c = standard_history_columns(bodies, walls);
-  ASSERT_EQ(c.size(), 12u + 2u * 10u + 6u);
+  ASSERT_EQ(c.size(), 12u + 2u * 11u + 6u);
   const std::vector<std::string> head = {"time",
                                          "dt",
                                          "kinetic_energy",
@@ -177,12 +177,19 @@ TEST(HistoryWriter, StandardColumns) {
                                          "total_energy",
                                          "energy_balance_error"};
   EXPECT_EQ(std::vector<std::string>(c.begin(), c.begin() + 12), head);
-  const std::vector<std::string> ball = {
-      "ball.com_x",           "ball.com_y",          "ball.com_z",          "ball.vcom_x",
-      "ball.vcom_y",          "ball.vcom_z",         "ball.kinetic_energy", "ball.contact_force_x",
-      "ball.contact_force_y", "ball.contact_force_z"};
-  EXPECT_EQ(std::vector<std::string>(c.begin() + 12, c.begin() + 22), ball);
-  EXPECT_EQ(c[22], "plate.com_x");
+  const std::vector<std::string> ball = {"ball.com_x",
+                                         "ball.com_y",
+                                         "ball.com_z",
+                                         "ball.vcom_x",
+                                         "ball.vcom_y",
+                                         "ball.vcom_z",
+                                         "ball.kinetic_energy",
+                                         "ball.contact_force_x",
+                                         "ball.contact_force_y",
+                                         "ball.contact_force_z",
+                                         "ball.max_principal_stress"};
+  EXPECT_EQ(std::vector<std::string>(c.begin() + 12, c.begin() + 23), ball);
+  EXPECT_EQ(c[23], "plate.com_x");
   const std::vector<std::string> floor = {"floor.force_x",    "floor.force_y",
                                           "floor.force_z",    "floor.position_x",
                                           "floor.position_y", "floor.position_z"};

@@ -3,6 +3,7 @@
 // energy balance says they do, and bodies move as they should.
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -176,4 +177,39 @@ TEST(Loading, WallWithVelocityHistoryDoesAccountedWork) {
               smooth, sudden, balance_smooth);
   EXPECT_LT(std::fabs(balance_smooth), 2e-3);
   EXPECT_LT(smooth, 0.5 * sudden);
+}
+
+// The largest principal stress the history and summary report: a block pulled slowly at its
+// top face (base held) is in tension of about E times its strain, and the reported value is
+// the largest eigenvalue over all Gauss points, computed here independently with Eigen.
+TEST(Loading, LargestPrincipalStressOfAPulledBlock) {
+  ModelSpec s = block();
+  ConstraintSpec base;
+  base.body = 0;
+  base.region.kind = RegionSpec::Kind::Plane;
+  base.fix = {true, true, true};
+  s.constraints.push_back(base);
+  ConstraintSpec top;
+  top.body = 0;
+  top.region.kind = RegionSpec::Kind::Plane;
+  top.region.plane_point = Vec3(0, 0, 0.1);
+  top.velocity = Vec3(0.0, 0.0, 0.01);  // quasi-static: rho c v is 5 % of the final stress
+  s.constraints.push_back(top);
+  Simulation sim(build_model(s));
+  while (sim.time() < 2e-3) sim.step();
+  const Model& m = sim.model();
+  double expected = -HUGE_VAL;
+  for (std::size_t g = 0; g < m.stress.size() / 6; ++g) {
+    const double* t = m.stress.data() + 6 * g;
+    Eigen::Matrix3d S;
+    S << t[0], t[3], t[5], t[3], t[1], t[4], t[5], t[4], t[2];
+    expected = std::max(expected,
+                        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(S).eigenvalues().maxCoeff());
+  }
+  const double strain = 0.01 * sim.time() / 0.1;
+  std::printf("pulled block: largest principal stress %.5g Pa, E strain %.5g Pa\n",
+              sim.max_principal_stress(0), 1e9 * strain);
+  EXPECT_NEAR(sim.max_principal_stress(0), expected, 1e-9 * std::fabs(expected));
+  EXPECT_GT(expected, 0.9e9 * strain);
+  EXPECT_LT(expected, 3.0e9 * strain);  // ends held sideways raise it near the corners only
 }

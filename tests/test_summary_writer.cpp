@@ -92,10 +92,11 @@ TEST(SummaryWriter, RoundTripKeysAndNull) {
   const json& rod = j["bodies"]["rod"];
   for (const char* key :
        {"mass", "added_mass", "volume", "com", "vcom", "angular_velocity", "kinetic_energy",
-        "bbox_min", "bbox_max", "max_equivalent_plastic_strain", "coefficient_of_restitution"}) {
+        "bbox_min", "bbox_max", "max_equivalent_plastic_strain", "max_principal_stress",
+        "max_principal_stress_time", "coefficient_of_restitution"}) {
     EXPECT_TRUE(rod.contains(key)) << key;
   }
-  EXPECT_EQ(rod.size(), 11u);
+  EXPECT_EQ(rod.size(), 13u);
   EXPECT_TRUE(rod["coefficient_of_restitution"].is_null());
   EXPECT_EQ(rod["vcom"], json::array({0.0, 0.0, -227.0}));
   EXPECT_EQ(rod["bbox_max"], json::array({1.0, 2.0, 3.0}));

@@ -29,14 +29,29 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-THESIS_SPEEDS = [4.3, 5.0, 5.4, 6.0, 6.35]
-# Thesis Table 5.5 (restitution of the Mohr-Coulomb cases, simulated)
-THESIS = {
-    "concrete_mc1": [0.521, 0.510, 0.502, 0.488, 0.482],
-    "concrete_mc2": [0.426, 0.410, 0.404, 0.395, 0.389],
-    "concrete_mc3": [0.421, 0.406, 0.400, 0.390, 0.387],
-    "concrete_mc4": [0.435, 0.420, 0.413, 0.402, 0.398],
-}
+REFERENCE_CSV = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenes",
+                             "ball_on_concrete_reference.csv")
+
+
+def read_reference(path=REFERENCE_CSV):
+    """The thesis' Table 5.5 (simulated, per material: speeds and e) and Table 5.2 (experiments:
+    speed, mean, lowest, highest), from the CSV next to the scene."""
+    thesis, experiments = {}, []
+    with open(path, newline="") as f:
+        rows = csv.DictReader(line for line in f if not line.startswith("#"))
+        for r in rows:
+            speed, e = float(r["speed"]), float(r["e"])
+            if r["source"] == "table5.5":
+                thesis.setdefault(r["material"], ([], []))
+                thesis[r["material"]][0].append(speed)
+                thesis[r["material"]][1].append(e)
+            else:
+                experiments.append((speed, e, float(r["e_lowest"]), float(r["e_highest"])))
+    return thesis, experiments
+
+
+# THESIS[material] = (speeds, e); EXPERIMENTS = [(speed, mean, lowest, highest)]
+THESIS, EXPERIMENTS = read_reference()
 LABELS = {
     "concrete_mc1": "MC case 1 (c 15 MPa, φ 30°)",
     "concrete_mc2": "MC case 2 (c 45 MPa, φ 13°)",
@@ -54,10 +69,9 @@ def speed_of(text):
 
 
 def thesis_value(material, speed):
-    values = THESIS.get(material)
-    if values is None:
+    if material not in THESIS:
         return None
-    for v, e in zip(THESIS_SPEEDS, values):
+    for v, e in zip(*THESIS[material]):
         if abs(v - speed) < 1e-6:
             return e
     return None
@@ -111,7 +125,7 @@ def main():
         if pts:
             ax.plot([p[0] for p in pts], [p[1] for p in pts], "-o", color=color, label=label)
         if material in THESIS:
-            ax.plot(THESIS_SPEEDS, THESIS[material], "--", color=color, alpha=0.8,
+            ax.plot(*THESIS[material], "--", color=color, alpha=0.8,
                     label=f"{label.split(' (')[0]}, thesis")
     ev = [x[0] for x in EXPERIMENTS]
     em = [x[1] for x in EXPERIMENTS]
