@@ -163,8 +163,28 @@ void print_summary(const femdem::SceneFile& scene) {
                             w.velocity_history.back().time),
           w.friction, w.penalty_factor > 0.0 ? w.penalty_factor : m.contact.penalty_factor,
           w.damping);
+      if (!w.force_history.empty())
+        fmt::print("    force-driven: mass {:g} kg, force history of {} points, {:g} N at t = 0, "
+                   "{:g} N from t = {:g} s on\n",
+                   w.mass, w.force_history.size(), w.force_history.front().force,
+                   w.force_history.back().force, w.force_history.back().time);
+      if (w.bounded)
+        fmt::print("    acts only up to {:g} m along {}\n", w.bound_max, vec(w.bound_axis));
     }
     fmt::print("\n");
+  }
+  if (m.compaction) {
+    const femdem::CompactionSpec& c = *m.compaction;
+    std::string die, powder;
+    for (int wi : c.die_walls)
+      die += (die.empty() ? "" : ", ") + m.walls[static_cast<std::size_t>(wi)].name;
+    for (int bi : c.powder)
+      powder += (powder.empty() ? "" : ", ") + m.bodies[static_cast<std::size_t>(bi)].name;
+    fmt::print("Compaction\n  punch {}, bottom {}; die walls {}\n  die cross-section {:g} m^2, "
+               "perimeter {:g} m; powder: {}\n\n",
+               m.walls[static_cast<std::size_t>(c.punch)].name,
+               m.walls[static_cast<std::size_t>(c.bottom)].name, die, c.area, c.perimeter,
+               powder.empty() ? "every body that is not fixed" : powder);
   }
   if (!m.constraints.empty()) {
     fmt::print("Constraints ({})\n", m.constraints.size());
