@@ -3,6 +3,7 @@
 // run fails or is interrupted.
 #include "io/runner.hpp"
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -155,6 +157,32 @@ CompactionSummary summarise_compaction(const CompactionMonitor& mon,
   return out;
 }
 
+// tools/plot_compaction.py OUT_DIR with the system python (which has Debian's matplotlib),
+// else the python3 on the PATH; its output goes to run.log only. Plots are a convenience: a
+// missing python or matplotlib is a note, not a failure of the run.
+void plot_compaction(const RunOptions& options, const std::filesystem::path& out, RunLog& log) {
+  auto quote = [](const std::string& s) {  // for sh: '...' with each ' written as '\''
+    std::string q = "'";
+    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+  };
+  int code = 127;
+  for (const char* python : {"/usr/bin/python3", "python3"}) {
+    if (python[0] == '/' && !std::filesystem::exists(python)) continue;
+    const std::string cmd = std::string(python) + " " + quote(options.plot_script) + " " +
+                            quote(out.string()) + " >> " + quote((out / "run.log").string()) +
+                            " 2>&1";
+    const int status = std::system(cmd.c_str());
+    code = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : 127;
+    if (code != 127) break;
+  }
+  if (code == 0)
+    log.say("plots: compaction_curve.png, force_displacement.png, heckel.png");
+  else
+    log.say("note: no compaction plots (" + options.plot_script + " exited with " +
+            std::to_string(code) + "; see run.log)");
+}
+
 }  // namespace
 
 int run_scene(const SceneFile& scene, const RunOptions& options) {
@@ -224,6 +252,7 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
   HistoryWriter history(out / "history.csv", std::move(columns));
   // the compaction curve, kept for the fits and extremes of summary.json
   std::vector<CompactionSample> curve;
+  double compaction_time = 0.0;  // wall time spent on the compaction columns (PERFORMANCE.md)
   if (compaction)
     curve.reserve(static_cast<std::size_t>(std::min(1e6, set.end_time / set.history_interval)) + 2);
   std::vector<double> disp(m.X.size()), s6, vm, pr, ep, row;
@@ -250,7 +279,10 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
       row.insert(row.end(), {f.x(), f.y(), f.z(), p.x(), p.y(), p.z()});
     }
     if (compaction) {
+      const auto t0 = std::chrono::steady_clock::now();
       const CompactionSample c = compaction->sample(sim);
+      compaction_time +=
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       curve.push_back(c);
       double v[12];
       CompactionMonitor::values(c, v);
@@ -293,7 +325,10 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
                       .mass_scaling_dissipation = e.mass_scaling_dissipation,
                       .external_work = e.external_work,
                       .balance_error = sim.balance_error()};
-    if (compaction) summary.compaction = summarise_compaction(*compaction, curve);
+    if (compaction) {
+      summary.compaction = summarise_compaction(*compaction, curve);
+      summary.extra["compaction_time_s"] = compaction_time;
+    }
     summary.bodies.clear();
     for (std::size_t b = 0; b < m.bodies.size(); ++b) {
       const BodyState s = sim.body_state(static_cast<int>(b));
@@ -413,6 +448,7 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
     }
   }
   log.say("results in " + out.string() + ": results.xdmf (ParaView), history.csv, summary.json");
+  if (compaction && !options.plot_script.empty()) plot_compaction(options, out, log);
   return 0;
 }
 

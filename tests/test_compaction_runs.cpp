@@ -13,7 +13,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 
 #include "engine/errors.hpp"
@@ -38,21 +40,31 @@ struct Options {
   std::string compaction_extra;
   double height = 4e-3;       // of the cube (a tablet when below 4 mm)
   double penalty_factor = 0;  // of every wall; 0: the default 100
+  double element_size = 2e-3;
+  int threads = 1;
+  double history_interval = 5e-6;
 };
+
+// a number as TOML reads it back exactly (std::to_string would print 2.5e-7 as 0.000000)
+std::string num(double v) {
+  std::ostringstream os;
+  os << std::setprecision(17) << v;
+  return os.str();
+}
 
 std::string scene_text(const Options& o) {
   const double c = 0.5 * kSide;
-  const std::string pf = o.penalty_factor > 0
-                             ? "penalty_factor = " + std::to_string(o.penalty_factor) + "\n"
-                             : std::string();
+  const std::string pf =
+      o.penalty_factor > 0 ? "penalty_factor = " + num(o.penalty_factor) + "\n" : std::string();
   std::string s = R"(title = "compaction test"
 [simulation]
-end_time = )" + std::to_string(o.end_time) +
+end_time = )" + num(o.end_time) +
                   R"(
 output_interval = )" +
-                  std::to_string(o.end_time / 2) +
+                  num(o.end_time / 2) +
                   R"(
-history_interval = 5e-6
+history_interval = )" +
+                  num(o.history_interval) + R"(
 [[materials]]
 name = "m"
 )" + o.material + R"(
@@ -63,11 +75,11 @@ poisson_ratio = 0.3
 name = "cube"
 material = "m"
 mesh = { generator = "box", size = [4e-3, 4e-3, )" +
-                  std::to_string(o.height) + R"(], element_size = 2e-3 }
+                  num(o.height) + R"(], element_size = )" + num(o.element_size) + R"( }
 [[walls]]
 name = "bottom"
-point = [)" + std::to_string(c) +
-                  ", " + std::to_string(c) +
+point = [)" + num(c) +
+                  ", " + num(c) +
                   R"(, 0]
 normal = [0, 0, 1]
 )" + pf + o.bottom_motion +
@@ -75,7 +87,7 @@ normal = [0, 0, 1]
 [[walls]]
 name = "punch"
 point = [0, 0, )" +
-                  std::to_string(o.height) + R"(]
+                  num(o.height) + R"(]
 normal = [0, 0, -1]
 )" + pf + o.punch_motion +
                   R"(
@@ -83,9 +95,9 @@ normal = [0, 0, -1]
 punch = "punch"
 bottom = "bottom"
 die = { radius = )" +
-                  std::to_string(o.die_radius) +
-                  ", sides = 4, friction = " + std::to_string(o.die_friction) + o.die_extra +
-                  (o.penalty_factor > 0 ? ", penalty_factor = " + std::to_string(o.penalty_factor)
+                  num(o.die_radius) + ", sides = 4, friction = " + num(o.die_friction) +
+                  o.die_extra +
+                  (o.penalty_factor > 0 ? ", penalty_factor = " + num(o.penalty_factor)
                                         : std::string()) +
                   " }\n" + o.compaction_extra + "\n";
   return s;
@@ -102,8 +114,9 @@ RunResult run_scene(const std::string& name, const Options& o) {
   fs::create_directories(dir);
   std::ofstream(dir / "scene.toml") << scene_text(o);
   const auto r = femdem::test::run_command(std::string("'") + FEMDEM_EXE + "' run '" +
-                                           (dir / "scene.toml").string() + "' --quiet --out '" +
-                                           (dir / "out").string() + "' --threads 1");
+                                           (dir / "scene.toml").string() +
+                                           "' --quiet --no-plot --out '" + (dir / "out").string() +
+                                           "' --threads " + std::to_string(o.threads));
   EXPECT_EQ(r.code, 0) << r.output;
   RunResult run;
   run.h = femdem::test::read_history(dir / "out" / "history.csv");
@@ -229,10 +242,11 @@ TEST(CompactionRuns, UnloadingAndEjection) {
   // the bottom starts the tablet slowly (0.1 m/s from 1.3 to 1.6 ms), then pushes it out at 2 m/s
   const std::vector<std::array<double, 2>> bottom_v = {
       {0, 0}, {1.2e-3, 0}, {1.3e-3, 0.1}, {1.6e-3, 0.1}, {1.8e-3, 2.0}};
-  o.bottom_motion = "velocity_history = [";
-  for (const auto& [tv, v] : bottom_v)
-    o.bottom_motion += "[" + std::to_string(tv) + ", 0, 0, " + std::to_string(v) + "], ";
-  o.bottom_motion += "]";
+  std::ostringstream bm;
+  bm << "velocity_history = [";
+  for (const auto& [tv, v] : bottom_v) bm << "[" << tv << ", 0, 0, " << v << "], ";
+  bm << "]";
+  o.bottom_motion = bm.str();
   o.end_time = 3.1e-3;
   const RunResult r = run_scene("eject", o);
   const auto& h = r.h;
@@ -339,4 +353,27 @@ TEST(CompactionRuns, BadKeysExitWithTwoNamingFileLineAndKey) {
     EXPECT_EQ(e.key, "compaction.punch") << e.describe();
     EXPECT_GT(e.line, 0);
   }
+}
+
+// The compaction columns are sums over elements and walls: with a mesh big enough for the
+// parallel loops (750 elements), 1 and 2 threads must write the same history.csv, bit for bit.
+TEST(CompactionRuns, OneAndTwoThreadsGiveIdenticalColumns) {
+  Options o;
+  o.element_size = 0.8e-3;
+  o.end_time = 5e-6;
+  o.history_interval = 2.5e-7;
+  o.die_friction = 0.3;
+  o.punch_motion = "velocity = [0, 0, -0.1]";  // from the start: contact within the short run
+  std::string text[2];
+  for (int threads : {1, 2}) {
+    o.threads = threads;
+    const std::string name = "threads" + std::to_string(threads);
+    run_scene(name, o);
+    std::ifstream in(fs::path(FEMDEM_TEST_TMP) / "compaction" / name / "out" / "history.csv");
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    text[threads - 1] = ss.str();
+  }
+  ASSERT_GT(text[0].size(), 1000u);
+  EXPECT_TRUE(text[0] == text[1]) << "history.csv differs between 1 and 2 threads";
 }
