@@ -20,11 +20,11 @@ std::vector<std::string> compaction_columns() {
 CompactionMonitor::CompactionMonitor(const Simulation& sim, const CompactionSpec& spec)
     : spec_(spec) {
   const Model& m = sim.model();
+  powder_.assign(m.bodies.size(), 0);
   if (spec_.powder.empty()) {
-    for (std::size_t b = 0; b < m.bodies.size(); ++b)
-      if (!m.bodies[b].fixed) powder_.push_back(static_cast<std::int32_t>(b));
+    for (std::size_t b = 0; b < m.bodies.size(); ++b) powder_[b] = m.bodies[b].fixed ? 0 : 1;
   } else {
-    for (int b : spec_.powder) powder_.push_back(b);
+    for (int b : spec_.powder) powder_[static_cast<std::size_t>(b)] = 1;
   }
   const Vec3 n = m.walls[spec_.bottom].normal;
   v0_ = sim.bodies_volume(powder_);

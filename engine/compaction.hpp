@@ -47,10 +47,10 @@ class CompactionMonitor {
 
  private:
   CompactionSpec spec_;
-  std::vector<std::int32_t> powder_;
-  double v0_ = 0.0;      // initial solid volume
-  double h0_ = 0.0;      // initial column height
-  double punch0_ = 0.0;  // initial punch position along the axis
+  std::vector<std::uint8_t> powder_;  // per body: 1 for the powder
+  double v0_ = 0.0;                   // initial solid volume
+  double h0_ = 0.0;                   // initial column height
+  double punch0_ = 0.0;               // initial punch position along the axis
 };
 
 struct LineFit {

@@ -517,28 +517,25 @@ void Simulation::update_force_driven_walls(double step_dt) {
   }
 }
 
-double Simulation::bodies_volume(std::span<const std::int32_t> bodies) const {
+double Simulation::bodies_volume(std::span<const std::uint8_t> body_mask) const {
   const Model& m = model_;
+  const std::int32_t ne = m.element_count;
   double* ve = elem_scratch_.data();
-  // per element into its own slot (parallel), then one serial sum in element order: the same
-  // bits for any thread count
-  for (const std::int32_t bi : bodies) {
-    const Body& b = m.bodies[bi];
-    const std::int32_t e0 = b.first_element, e1 = b.first_element + b.element_count;
-#pragma omp parallel for schedule(static) if (b.element_count > kParallelMinElements)
-    for (std::int32_t e = e0; e < e1; ++e) {
-      double xe[30];
-      for (int a = 0; a < 10; ++a)
-        for (int k = 0; k < 3; ++k) xe[3 * a + k] = m.x[3 * m.conn[e][a] + k];
-      const std::size_t es = static_cast<std::size_t>(e);
-      ve[e] = tet10_current_volume(xe, m.dNdX.data() + 120 * es, m.gauss_weight.data() + 4 * es);
-    }
+  // One parallel pass over all elements (a powder of many small bodies parallelises as well as
+  // one big body), each into its own slot, then one serial sum in element order: the same bits
+  // for any thread count.
+#pragma omp parallel for schedule(static) if (ne > kParallelMinElements)
+  for (std::int32_t e = 0; e < ne; ++e) {
+    if (!body_mask[m.element_body[e]]) continue;
+    double xe[30];
+    for (int a = 0; a < 10; ++a)
+      for (int k = 0; k < 3; ++k) xe[3 * a + k] = m.x[3 * m.conn[e][a] + k];
+    const std::size_t es = static_cast<std::size_t>(e);
+    ve[e] = tet10_current_volume(xe, m.dNdX.data() + 120 * es, m.gauss_weight.data() + 4 * es);
   }
   double v = 0.0;
-  for (const std::int32_t bi : bodies) {
-    const Body& b = m.bodies[bi];
-    for (std::int32_t e = b.first_element; e < b.first_element + b.element_count; ++e) v += ve[e];
-  }
+  for (std::int32_t e = 0; e < ne; ++e)
+    if (body_mask[m.element_body[e]]) v += ve[e];
   return v;
 }
 

@@ -76,9 +76,10 @@ class Simulation {
   Vec3 wall_position(int wall) const { return model_.walls[wall].point; }
   Vec3 wall_force(int wall) const { return model_.walls[wall].force; }
   Vec3 wall_velocity(int wall) const { return model_.walls[wall].velocity; }
-  // Current (deformed) volume of these bodies together: one pass over their elements, no
-  // allocation, deterministic (what the compaction columns call every history row).
-  double bodies_volume(std::span<const std::int32_t> bodies) const;
+  // Current (deformed) volume of the bodies b with body_mask[b] != 0 (one entry per body)
+  // together: one pass over the elements, no allocation, deterministic (what the compaction
+  // columns call every history row).
+  double bodies_volume(std::span<const std::uint8_t> body_mask) const;
 
   // Gauss-point averages per element for output: Cauchy stress (6), von Mises, pressure
   // (-trace/3), equivalent plastic strain.

@@ -104,8 +104,9 @@ TEST(Compaction, ForceDrivenPunchUnloads) {
 
 TEST(Compaction, BodiesVolumeIsTheMeshVolume) {
   Simulation sim(build_model(block_under_punch({{0.0, 0.0}}, 1.0)));
-  const std::int32_t bodies[] = {0};
-  EXPECT_NEAR(sim.bodies_volume(bodies), kA * kL, 1e-15);
+  const std::uint8_t mask[] = {1}, none[] = {0};
+  EXPECT_NEAR(sim.bodies_volume(mask), kA * kL, 1e-15);
+  EXPECT_EQ(sim.bodies_volume(none), 0.0);
 }
 
 // Heckel: D = 1 - exp(-(K P + A)) is a straight line in ln(1 / (1 - D)); points outside the
