@@ -130,7 +130,7 @@ struct CompactionSpec {
   double perimeter = 0.0;   // die cross-section perimeter, m (0: no radial pressure)
   std::vector<int> powder;  // bodies; empty: every body that is not fixed
   // Range of mean punch pressure over which the Heckel and Kawakita lines are fitted (loading
-  // part only). heckel_min_pressure 0 means 0.2 x the largest pressure; max 0 the largest.
+  // part only). fit_min_pressure 0 means 0.2 x the largest pressure; max 0 the largest.
   double fit_min_pressure = 0.0;
   double fit_max_pressure = 0.0;
 };
