@@ -41,6 +41,21 @@ struct Wall {
   double penalty_factor = 100.0;
   double damping = 0.0;       // fraction of critical damping of each node's contact spring
   Vec3 force = Vec3::Zero();  // force the bodies exert on the wall, last step
+  // Force-driven wall (WallSpec::force_history non-empty): mass, and its acceleration along the
+  // normal at the last force evaluation. `velocity` is then its whole-step velocity.
+  std::vector<ForcePoint> force_history;
+  double mass = 0.0;
+  double accel = 0.0;
+  // finite axial extent (WallSpec::bounded)
+  bool bounded = false;
+  Vec3 bound_axis = Vec3(0, 0, 1);
+  double bound_min = 0.0, bound_max = 0.0;
+  bool force_driven() const { return !force_history.empty(); }
+  bool acts_at(const Vec3& p) const {
+    if (!bounded) return true;
+    const double s = p.dot(bound_axis);
+    return s >= bound_min && s <= bound_max;
+  }
 };
 
 // Per boundary node of a body that can touch walls: its share of the surface area and the depth

@@ -304,6 +304,20 @@ Model build_model(const ModelSpec& spec) {
     w.friction = ws.friction;
     w.penalty_factor = ws.penalty_factor > 0.0 ? ws.penalty_factor : spec.contact.penalty_factor;
     w.damping = ws.damping;
+    w.force_history = ws.force_history;
+    w.mass = ws.mass;
+    if (w.force_driven()) {
+      if (!(w.mass > 0.0))
+        throw InputError("a wall with a force_history needs a positive mass", {}, 0, 0,
+                         "walls." + ws.name + ".mass");
+      // it moves along its normal only
+      w.velocity = ws.velocity.dot(w.normal) * w.normal;
+      w.step_velocity = w.velocity;
+    }
+    w.bounded = ws.bounded;
+    w.bound_axis = ws.bound_axis.normalized();
+    w.bound_min = ws.bound_min;
+    w.bound_max = ws.bound_max;
     m.walls.push_back(w);
   }
 

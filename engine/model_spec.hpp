@@ -63,6 +63,18 @@ struct WallSpec {
   // high-speed impact on soft (yielding) material needs some, or the light corner nodes of the
   // impact face bounce off the wall into the body.
   double damping = 0.0;
+  // Non-empty: a force-driven wall (a punch under a prescribed load). It is a rigid body of
+  // mass `mass` that moves along its normal only, pushed by force_history(t) along the normal
+  // (towards the bodies) and held back by the contact forces of the bodies; `velocity` then is
+  // its initial velocity (along the normal). Integrated with the nodes' central difference.
+  std::vector<ForcePoint> force_history;
+  double mass = 0.0;
+  // A wall of finite axial extent (the side of a die whose mouth a compact is ejected through):
+  // it acts only on nodes whose coordinate p . bound_axis lies in [bound_min, bound_max].
+  bool bounded = false;
+  Vec3 bound_axis = Vec3(0, 0, 1);
+  double bound_min = -std::numeric_limits<double>::infinity();
+  double bound_max = std::numeric_limits<double>::infinity();
 };
 
 // Region of a body's reference configuration whose nodes a constraint acts on.
@@ -107,6 +119,22 @@ inline FbarMode default_fbar_mode(const MaterialParams&) {
   return FbarMode::Off;
 }
 
+// A closed-die compaction (the scene's [compaction] section): which walls are the punch, the
+// bottom and the die, the die's cross-section, and which bodies are the powder. Indices into
+// ModelSpec::walls and ModelSpec::bodies. The die axis is the bottom wall's normal.
+struct CompactionSpec {
+  int punch = -1;
+  int bottom = -1;
+  std::vector<int> die_walls;
+  double area = 0.0;        // die cross-section, m^2
+  double perimeter = 0.0;   // die cross-section perimeter, m (0: no radial pressure)
+  std::vector<int> powder;  // bodies; empty: every body that is not fixed
+  // Range of mean punch pressure over which the Heckel and Kawakita lines are fitted (loading
+  // part only). fit_min_pressure 0 means 0.2 x the largest pressure; max 0 the largest.
+  double fit_min_pressure = 0.0;
+  double fit_max_pressure = 0.0;
+};
+
 struct ModelSpec {
   std::string title;
   SimulationSettings simulation;
@@ -115,6 +143,7 @@ struct ModelSpec {
   std::vector<WallSpec> walls;
   std::vector<ConstraintSpec> constraints;
   ContactSettings contact;
+  std::optional<CompactionSpec> compaction;
 };
 
 }  // namespace femdem

@@ -71,7 +71,10 @@ Simulation::Simulation(Model model) : model_(std::move(model)), body_contact_(mo
   bool wall_friction = false;
   for (const Wall& w : model_.walls) wall_friction = wall_friction || w.friction > 0.0;
   if (wall_friction) wall_stick_.assign(3 * model_.surface.size() * model_.walls.size(), 0.0);
+  elem_scratch_.assign(ne, 0.0);
+  wall_stiffness_.assign(model_.walls.size(), 0.0);
   compute_forces(0.0);
+  update_force_driven_walls(0.0);
   // mass scaling at t = 0 keeps the given initial velocities: it is part of the initial state
   set_time_step();
   initial_balance_ = energies().balance();
@@ -254,7 +257,8 @@ void Simulation::compute_forces(double step_dt) {
         double* slip = wall_stick_.empty() ? nullptr : wall_stick_.data() + 3 * (si * nw + wi);
         const double k = w.penalty_factor * E * s.area / s.depth;
         const double d = (w.point - p).dot(w.normal);  // penetration depth
-        if (d <= 0.0) {
+        // past the end of a bounded wall (a die's mouth) a node is as free as one in front of it
+        if (d <= 0.0 || !w.acts_at(p)) {
           if (slip) {
             // leaving the wall frees the tangential spring: its energy is lost to friction
             const Vec3 u(slip[0], slip[1], slip[2]);
@@ -394,14 +398,17 @@ void Simulation::set_time_step() {
   // the element's plus the spring's (omega^2 <= omega_e^2 + k/m).
   if (!m.walls.empty()) {
     const double omega_el = 2.0 / dt_el;
+    std::fill(wall_stiffness_.begin(), wall_stiffness_.end(), 0.0);
     for (const SurfaceNode& s : m.surface) {
       const Body& b = m.bodies[s.body];
       if (b.fixed) continue;
       const Vec3 p(m.x[3 * s.node], m.x[3 * s.node + 1], m.x[3 * s.node + 2]);
-      for (const auto& w : m.walls) {
+      for (std::size_t wi = 0; wi < m.walls.size(); ++wi) {
+        const Wall& w = m.walls[wi];
         if ((p - w.point).dot(w.normal) > s.depth) continue;
         const double k =
             w.penalty_factor * m.materials[b.material].youngs_modulus * s.area / s.depth;
+        wall_stiffness_[wi] += k;
         // a damping ratio xi shrinks the stable step by sqrt(1 + xi^2) - xi
         const double xi = w.damping;
         dt = std::min(dt, 2.0 * (std::sqrt(1.0 + xi * xi) - xi) /
@@ -414,6 +421,12 @@ void Simulation::set_time_step() {
     dt = std::min(dt,
                   2.0 / std::sqrt(omega_el * omega_el + body_contact_.max_stiffness_over_mass()));
   }
+  // A force-driven wall is a mass on the contact springs of every node near it (in parallel):
+  // its own frequency must be resolved too. (The nodes' bound above already counts each spring
+  // on its node's side.)
+  for (std::size_t wi = 0; wi < m.walls.size(); ++wi)
+    if (m.walls[wi].force_driven() && wall_stiffness_[wi] > 0.0)
+      dt = std::min(dt, 2.0 / std::sqrt(wall_stiffness_[wi] / m.walls[wi].mass));
   stable_dt_ = dt;
   dt_ = m.settings.time_step > 0.0 ? m.settings.time_step : m.settings.time_step_safety * dt;
 }
@@ -451,7 +464,12 @@ void Simulation::step(double dt_limit) {
       for (int k = 0; k < 3; ++k) gravity_work += m.mass[n] * g[k] * dt * m.v[3 * n + k];
   }
   for (auto& w : m.walls) {
-    if (w.velocity_history.empty()) {
+    if (w.force_driven()) {
+      // the same kick-drift as the nodes, along the normal only
+      w.velocity += (0.5 * dt * w.accel) * w.normal;
+      w.point += dt * w.velocity;
+      w.step_velocity = w.velocity;
+    } else if (w.velocity_history.empty()) {
       w.point += dt * w.velocity;
     } else {
       // exact integral of the history; the velocity is the one at the end of the step
@@ -466,6 +484,7 @@ void Simulation::step(double dt_limit) {
   ++steps_;
 
   compute_forces(dt);
+  update_force_driven_walls(dt);
 
   // second half kick
   bool finite = true;
@@ -487,6 +506,38 @@ void Simulation::step(double dt_limit) {
   max_energy_ =
       std::max({max_energy_, en.kinetic + en.internal + en.contact, std::fabs(en.external_work)});
   set_time_step();
+}
+
+void Simulation::update_force_driven_walls(double step_dt) {
+  for (Wall& w : model_.walls) {
+    if (!w.force_driven()) continue;
+    // pushed along its normal by the prescribed load, held back by the bodies (w.force is the
+    // force they exert on it)
+    w.accel = (history_force(w.force_history, time_) + w.force.dot(w.normal)) / w.mass;
+    w.velocity += (0.5 * step_dt * w.accel) * w.normal;
+  }
+}
+
+double Simulation::bodies_volume(std::span<const std::uint8_t> body_mask) const {
+  const Model& m = model_;
+  const std::int32_t ne = m.element_count;
+  double* ve = elem_scratch_.data();
+  // One parallel pass over all elements (a powder of many small bodies parallelises as well as
+  // one big body), each into its own slot, then one serial sum in element order: the same bits
+  // for any thread count.
+#pragma omp parallel for schedule(static) if (ne > kParallelMinElements)
+  for (std::int32_t e = 0; e < ne; ++e) {
+    if (!body_mask[m.element_body[e]]) continue;
+    double xe[30];
+    for (int a = 0; a < 10; ++a)
+      for (int k = 0; k < 3; ++k) xe[3 * a + k] = m.x[3 * m.conn[e][a] + k];
+    const std::size_t es = static_cast<std::size_t>(e);
+    ve[e] = tet10_current_volume(xe, m.dNdX.data() + 120 * es, m.gauss_weight.data() + 4 * es);
+  }
+  double v = 0.0;
+  for (std::int32_t e = 0; e < ne; ++e)
+    if (body_mask[m.element_body[e]]) v += ve[e];
+  return v;
 }
 
 Energies Simulation::energies() const {

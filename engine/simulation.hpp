@@ -4,6 +4,7 @@
 // steps, so kinetic energy and outputs are synchronous with positions), automatic stable step.
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -77,6 +78,11 @@ class Simulation {
   double max_principal_stress(int body) const;
   Vec3 wall_position(int wall) const { return model_.walls[wall].point; }
   Vec3 wall_force(int wall) const { return model_.walls[wall].force; }
+  Vec3 wall_velocity(int wall) const { return model_.walls[wall].velocity; }
+  // Current (deformed) volume of the bodies b with body_mask[b] != 0 (one entry per body)
+  // together: one pass over the elements, no allocation, deterministic (what the compaction
+  // columns call every history row).
+  double bodies_volume(std::span<const std::uint8_t> body_mask) const;
 
   // Gauss-point averages per element for output: Cauchy stress (6), von Mises, pressure
   // (-trace/3), equivalent plastic strain.
@@ -92,6 +98,9 @@ class Simulation {
   // `element_dt_needed` (conserving nodal momentum once the run has started).
   void scale_masses(double element_dt_needed);
   std::string advice() const;  // what to change when the run diverges
+  // Force-driven walls: acceleration from the prescribed load and the contact forces just
+  // computed, then the second half kick of their velocity (step_dt 0: acceleration only).
+  void update_force_driven_walls(double step_dt);
 
   // A material's return mapping, built once from its parameters.
   struct CompiledMaterial {
@@ -118,7 +127,9 @@ class Simulation {
   // wall has friction.
   std::vector<double> wall_stick_;
   BodyContact body_contact_;
-  std::vector<double> elem_viscous_power_;  // per element, this step
+  std::vector<double> elem_viscous_power_;    // per element, this step
+  mutable std::vector<double> elem_scratch_;  // per element, for bodies_volume
+  std::vector<double> wall_stiffness_;        // per wall: contact stiffness near it (stable step)
   // nodal F-bar (FbarMode::Nodal) work arrays
   bool has_nodal_fbar_ = false;
   std::vector<double> elem_volume_, elem_pressure_weight_, node_J_, node_Q_, node_ref_volume_;

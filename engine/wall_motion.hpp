@@ -46,4 +46,22 @@ inline Vec3 history_displacement(const std::vector<VelocityPoint>& points, doubl
   return d + (t - points.back().time) * points.back().velocity;
 }
 
+// A prescribed force history: piecewise linear in time, held at its last value after its last
+// time (a punch loaded, held and unloaded: [[0, 0], [t1, F], [t2, F], [t3, 0]]).
+struct ForcePoint {
+  double time = 0.0;
+  double force = 0.0;
+};
+
+// points: times strictly increasing from 0 (the reader checks it); empty means no force.
+inline double history_force(const std::vector<ForcePoint>& points, double t) {
+  if (points.empty()) return 0.0;
+  if (t <= points.front().time) return points.front().force;
+  for (std::size_t i = 0; i + 1 < points.size(); ++i) {
+    const ForcePoint &a = points[i], &b = points[i + 1];
+    if (t < b.time) return a.force + (t - a.time) / (b.time - a.time) * (b.force - a.force);
+  }
+  return points.back().force;
+}
+
 }  // namespace femdem

@@ -3,18 +3,23 @@
 // run fails or is interrupted.
 #include "io/runner.hpp"
 
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
+#include "engine/compaction.hpp"
 #include "engine/errors.hpp"
 #include "engine/simulation.hpp"
 #include "femdem_version.hpp"
@@ -100,6 +105,84 @@ struct RestitutionTracker {
   }
 };
 
+// summary.json's "compaction" object: extremes of the curve and the Heckel and Kawakita fits
+// over the loading part (up to the largest punch pressure), in the section's pressure range.
+CompactionSummary summarise_compaction(const CompactionMonitor& mon,
+                                       const std::vector<CompactionSample>& curve) {
+  CompactionSummary out;
+  if (curve.empty()) return out;
+  std::size_t peak = 0;
+  double max_force = -HUGE_VAL, max_density = -HUGE_VAL, max_radial = -HUGE_VAL, max_dv = 0.0;
+  for (std::size_t i = 0; i < curve.size(); ++i) {
+    const CompactionSample& c = curve[i];
+    if (c.punch_pressure > curve[peak].punch_pressure) peak = i;
+    max_force = std::max(max_force, c.punch_force);
+    max_density = std::max(max_density, c.relative_density);
+    max_radial = std::max(max_radial, c.radial_pressure);
+    max_dv = std::max(max_dv, std::fabs(c.volume_ratio - 1.0));
+  }
+  const CompactionSample &first = curve.front(), &last = curve.back();
+  const double p_max = curve[peak].punch_pressure;
+  const double lo = mon.spec().fit_min_pressure > 0.0 ? mon.spec().fit_min_pressure : 0.2 * p_max;
+  const double hi = mon.spec().fit_max_pressure > 0.0 ? mon.spec().fit_max_pressure : p_max;
+  out.values = {{"max_punch_pressure", p_max},
+                {"max_punch_force", max_force},
+                {"max_radial_pressure", max_radial},
+                {"initial_relative_density", first.relative_density},
+                {"final_relative_density", last.relative_density},
+                {"max_relative_density", max_density},
+                {"relative_density_at_max_pressure", curve[peak].relative_density},
+                {"final_punch_displacement", last.punch_displacement},
+                {"initial_solid_volume", mon.initial_solid_volume()},
+                {"final_volume_change", last.volume_ratio - 1.0},
+                {"max_abs_volume_change", max_dv}};
+  std::vector<double> P, D, C;
+  for (std::size_t i = 0; i <= peak; ++i) {
+    P.push_back(curve[i].punch_pressure);
+    D.push_back(curve[i].relative_density);
+    C.push_back(curve[i].column_strain);
+  }
+  const HeckelFit h = fit_heckel(P, D, lo, hi);
+  out.heckel = {{"K", h.K},
+                {"A", h.A},
+                {"yield_pressure", h.yield_pressure},
+                {"r2", h.r2},
+                {"pressure_min", lo},
+                {"pressure_max", hi},
+                {"points", static_cast<double>(h.points)}};
+  const KawakitaFit k = fit_kawakita(P, C, lo, hi);
+  out.kawakita = {{"a", k.a},           {"b", k.b},
+                  {"r2", k.r2},         {"pressure_min", lo},
+                  {"pressure_max", hi}, {"points", static_cast<double>(k.points)}};
+  return out;
+}
+
+// tools/plot_compaction.py OUT_DIR with the system python (which has Debian's matplotlib),
+// else the python3 on the PATH; its output goes to run.log only. Plots are a convenience: a
+// missing python or matplotlib is a note, not a failure of the run.
+void plot_compaction(const RunOptions& options, const std::filesystem::path& out, RunLog& log) {
+  auto quote = [](const std::string& s) {  // for sh: '...' with each ' written as '\''
+    std::string q = "'";
+    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+  };
+  int code = 127;
+  for (const char* python : {"/usr/bin/python3", "python3"}) {
+    if (python[0] == '/' && !std::filesystem::exists(python)) continue;
+    const std::string cmd = std::string(python) + " " + quote(options.plot_script) + " " +
+                            quote(out.string()) + " >> " + quote((out / "run.log").string()) +
+                            " 2>&1";
+    const int status = std::system(cmd.c_str());
+    code = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : 127;
+    if (code != 127) break;
+  }
+  if (code == 0)
+    log.say("plots: compaction_curve.png, force_displacement.png, heckel.png");
+  else
+    log.say("note: no compaction plots (" + options.plot_script + " exited with " +
+            std::to_string(code) + "; see run.log)");
+}
+
 }  // namespace
 
 int run_scene(const SceneFile& scene, const RunOptions& options) {
@@ -161,7 +244,17 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
   for (const auto& b : m.bodies) body_names.push_back(b.name);
   for (const auto& w : m.walls) wall_names.push_back(w.name);
   ResultsWriter results(out, ResultsMesh{m.X, m.conn, m.node_body, m.element_body, body_names});
-  HistoryWriter history(out / "history.csv", standard_history_columns(body_names, wall_names));
+  std::optional<CompactionMonitor> compaction;
+  if (spec.compaction) compaction.emplace(sim, *spec.compaction);
+  std::vector<std::string> columns = standard_history_columns(body_names, wall_names);
+  if (compaction)
+    for (std::string& c : compaction_columns()) columns.push_back(std::move(c));
+  HistoryWriter history(out / "history.csv", std::move(columns));
+  // the compaction curve, kept for the fits and extremes of summary.json
+  std::vector<CompactionSample> curve;
+  double compaction_time = 0.0;  // wall time spent on the compaction columns (PERFORMANCE.md)
+  if (compaction)
+    curve.reserve(static_cast<std::size_t>(std::min(1e6, set.end_time / set.history_interval)) + 2);
   std::vector<double> disp(m.X.size()), s6, vm, pr, ep, row;
   auto write_frame = [&]() {
     for (std::size_t i = 0; i < disp.size(); ++i) disp[i] = m.x[i] - m.X[i];
@@ -190,6 +283,16 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
       const Vec3 f = sim.wall_force(static_cast<int>(w)),
                  p = sim.wall_position(static_cast<int>(w));
       row.insert(row.end(), {f.x(), f.y(), f.z(), p.x(), p.y(), p.z()});
+    }
+    if (compaction) {
+      const auto t0 = std::chrono::steady_clock::now();
+      const CompactionSample c = compaction->sample(sim);
+      compaction_time +=
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      curve.push_back(c);
+      double v[12];
+      CompactionMonitor::values(c, v);
+      row.insert(row.end(), v, v + 12);
     }
     history.write_row(row);
   };
@@ -228,6 +331,10 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
                       .mass_scaling_dissipation = e.mass_scaling_dissipation,
                       .external_work = e.external_work,
                       .balance_error = sim.balance_error()};
+    if (compaction) {
+      summary.compaction = summarise_compaction(*compaction, curve);
+      summary.extra["compaction_time_s"] = compaction_time;
+    }
     summary.bodies.clear();
     for (std::size_t b = 0; b < m.bodies.size(); ++b) {
       const BodyState s = sim.body_state(static_cast<int>(b));
@@ -349,6 +456,7 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
     }
   }
   log.say("results in " + out.string() + ": results.xdmf (ParaView), history.csv, summary.json");
+  if (compaction && !options.plot_script.empty()) plot_compaction(options, out, log);
   return 0;
 }
 

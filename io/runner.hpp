@@ -13,6 +13,9 @@ struct RunOptions {
   int threads = -1;  // -1: the scene's value
   bool quiet = false;
   std::string command_line;
+  // Called as `python3 SCRIPT OUT_DIR` after a completed run whose scene has [compaction]
+  // (tools/plot_compaction.py); empty: no plots. A failing script is reported, not fatal.
+  std::string plot_script;
 };
 
 // Returns the process exit code. Throws InputError (bad input) and InstabilityError.

@@ -77,6 +77,16 @@ std::string summary_to_json(const RunSummary& s) {
   Json extra = Json::object();
   for (const auto& [key, value] : s.extra) extra[key] = value;
   j["extra"] = std::move(extra);
+  if (s.compaction) {
+    Json c = Json::object();
+    for (const auto& [key, value] : s.compaction->values) c[key] = value;
+    Json h = Json::object(), k = Json::object();
+    for (const auto& [key, value] : s.compaction->heckel) h[key] = value;
+    for (const auto& [key, value] : s.compaction->kawakita) k[key] = value;
+    c["heckel"] = std::move(h);
+    c["kawakita"] = std::move(k);
+    j["compaction"] = std::move(c);
+  }
   // Invalid UTF-8 in a name is replaced rather than thrown on: the summary must get written.
   return j.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
 }

@@ -8,6 +8,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace femdem {
@@ -49,6 +50,12 @@ struct BodySummary {
   std::optional<Restitution> coefficient_of_restitution;  // null unless it touched and left
 };
 
+// Closed-die compaction results (the scene's [compaction] section): named scalars, then the
+// Heckel and Kawakita fits, each written as a JSON object in this order.
+struct CompactionSummary {
+  std::vector<std::pair<std::string, double>> values, heckel, kawakita;
+};
+
 struct RunSummary {
   std::string scene;  // scene file as given
   RunStatus status = RunStatus::completed;
@@ -60,8 +67,9 @@ struct RunSummary {
   std::int64_t nodes = 0;
   std::int64_t elements = 0;
   EnergySummary energy;
-  std::vector<BodySummary> bodies;      // written as an object keyed by name, in this order
-  std::map<std::string, double> extra;  // further named scalars, written under "extra"
+  std::vector<BodySummary> bodies;              // written as an object keyed by name, in this order
+  std::map<std::string, double> extra;          // further named scalars, written under "extra"
+  std::optional<CompactionSummary> compaction;  // written as "compaction" when present
 };
 
 // The JSON text (2-space indented, keys in the order of SCENE_FORMAT.md, doubles in shortest

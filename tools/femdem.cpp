@@ -163,8 +163,30 @@ void print_summary(const femdem::SceneFile& scene) {
                             w.velocity_history.back().time),
           w.friction, w.penalty_factor > 0.0 ? w.penalty_factor : m.contact.penalty_factor,
           w.damping);
+      if (!w.force_history.empty())
+        fmt::print(
+            "    force-driven: mass {:g} kg, force history of {} points, {:g} N at t = 0, "
+            "{:g} N from t = {:g} s on\n",
+            w.mass, w.force_history.size(), w.force_history.front().force,
+            w.force_history.back().force, w.force_history.back().time);
+      if (w.bounded)
+        fmt::print("    acts only up to {:g} m along {}\n", w.bound_max, vec(w.bound_axis));
     }
     fmt::print("\n");
+  }
+  if (m.compaction) {
+    const femdem::CompactionSpec& c = *m.compaction;
+    std::string die, powder;
+    for (int wi : c.die_walls)
+      die += (die.empty() ? "" : ", ") + m.walls[static_cast<std::size_t>(wi)].name;
+    for (int bi : c.powder)
+      powder += (powder.empty() ? "" : ", ") + m.bodies[static_cast<std::size_t>(bi)].name;
+    fmt::print(
+        "Compaction\n  punch {}, bottom {}; die walls {}\n  die cross-section {:g} m^2, "
+        "perimeter {:g} m; powder: {}\n\n",
+        m.walls[static_cast<std::size_t>(c.punch)].name,
+        m.walls[static_cast<std::size_t>(c.bottom)].name, die, c.area, c.perimeter,
+        powder.empty() ? "every body that is not fixed" : powder);
   }
   if (!m.constraints.empty()) {
     fmt::print("Constraints ({})\n", m.constraints.size());
@@ -199,16 +221,17 @@ void print_summary(const femdem::SceneFile& scene) {
   fmt::print("Scene OK.\n");
 }
 
-// The plot script `femdem sweep` calls: next to the program's source tree (baked in at build
-// time), else in ../tools/ of the program's folder.
-std::string plot_sweep_script(const std::string& exe) {
+// A plot script the program calls (plot_sweep.py after `femdem sweep`, plot_compaction.py after
+// a run with [compaction]): next to the program's source tree (baked in at build time), else in
+// ../tools/ of the program's folder.
+std::string plot_script(const std::string& exe, const char* name) {
   namespace fs = std::filesystem;
   std::error_code ec;
 #ifdef FEMDEM_TOOLS_DIR
-  if (fs::exists(fs::path(FEMDEM_TOOLS_DIR) / "plot_sweep.py", ec))
-    return (fs::path(FEMDEM_TOOLS_DIR) / "plot_sweep.py").string();
+  if (fs::exists(fs::path(FEMDEM_TOOLS_DIR) / name, ec))
+    return (fs::path(FEMDEM_TOOLS_DIR) / name).string();
 #endif
-  const fs::path near = fs::path(exe).parent_path() / ".." / "tools" / "plot_sweep.py";
+  const fs::path near = fs::path(exe).parent_path() / ".." / "tools" / name;
   if (fs::exists(near, ec)) return near.string();
   return {};
 }
@@ -287,6 +310,9 @@ int main(int argc, char** argv) {
   run->add_option("--threads", threads, "Number of threads (0: all cores; default: the scene's)")
       ->check(CLI::NonNegativeNumber);
   run->add_flag("--quiet", quiet, "Print nothing but errors");
+  bool run_no_plot = false;
+  run->add_flag("--no-plot", run_no_plot,
+                "Do not call tools/plot_compaction.py after a run with [compaction]");
 
   CLI::App* check = app.add_subcommand(
       "check", "Read the scene, build the model and print a summary; run and write nothing");
@@ -355,7 +381,7 @@ int main(int argc, char** argv) {
     if (sweep->parsed()) {
       sweep_options.plot = !no_plot;
       sweep_options.femdem_exe = self_exe(argv[0]);
-      sweep_options.plot_script = plot_sweep_script(sweep_options.femdem_exe);
+      sweep_options.plot_script = plot_script(sweep_options.femdem_exe, "plot_sweep.py");
       return femdem::run_sweep(sweep_options);
     }
     if (run->parsed()) {
@@ -364,6 +390,8 @@ int main(int argc, char** argv) {
       options.out_dir = out_dir.empty() ? default_out_dir(scene) : out_dir;
       options.threads = threads;
       options.quiet = quiet;
+      if (!run_no_plot && scene.model.compaction)
+        options.plot_script = plot_script(self_exe(argv[0]), "plot_compaction.py");
       for (int i = 0; i < argc; ++i) {
         if (i) options.command_line += ' ';
         options.command_line += argv[i];
