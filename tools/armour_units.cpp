@@ -47,6 +47,11 @@
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Polygon_mesh_processing/shape_predicates.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Bounded_normal_change_placement.h>
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Edge_length_cost.h>
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Edge_length_stop_predicate.h>
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Midpoint_placement.h>
+#include <CGAL/Surface_mesh_simplification/edge_collapse.h>
 #include <CGAL/convex_hull_3.h>
 
 #include <CLI/CLI.hpp>
@@ -149,10 +154,11 @@ void add_octagon(std::vector<Vec>& pts, Vec c, Vec e1, Vec e2, double w) {
 // ---- shapes, built at unit size (the size option scales them afterwards) ----
 
 struct TetrapodParams {
-  double tip_diameter = 0.302;  // A / H
-  double mid_diameter = 0.470;  // D / H, at mid_from_tip from the tip face
-  double mid_from_tip = 0.477;  // C / H
-  int facets = 48;              // sides of each truncated cone
+  double tip_diameter = 0.302;                     // A / H
+  double mid_diameter = 0.470;                     // D / H, at mid_from_tip from the tip face
+  double mid_from_tip = 0.477;                     // C / H
+  int facets = 48;                                 // sides of each truncated cone
+  std::vector<double> phases{0.5, 0.1, 0.2, 0.3};  // turn of each leg's facets, in facets
 };
 
 double tetrapod_leg_length(const TetrapodParams& p) {
@@ -181,13 +187,12 @@ ExactMesh tetrapod(const TetrapodParams& p) {
   // rounding error apart. Pairwise sums of the lower legs' fractions stay away from whole numbers
   // for the same reason. The unit is rescaled to its exact height afterwards (round_to_float),
   // so the phases do not change H.
-  const double phase[4] = {0.5, 0.1, 0.2, 0.3};
   std::vector<ExactMesh> legs;
   for (int k = 0; k < 4; ++k) {
     const Vec d = dirs[k];
     const Vec e1 = d.z > 0.5 ? Vec{1, 0, 0} : unit(Vec{0, 0, -1} - (-d.z) * d);  // down the leg
     const Vec e2 = cross(d, e1);
-    const double a0 = 2.0 * std::numbers::pi / p.facets * phase[k];
+    const double a0 = 2.0 * std::numbers::pi / p.facets * p.phases.at(k);
     std::vector<Vec> pts;
     add_polygon(pts, centre, e1, e2, r_centre, p.facets, a0);
     add_polygon(pts, centre + F * d, e1, e2, r_tip, p.facets, a0);
@@ -276,24 +281,56 @@ struct Surface {
   std::vector<std::array<std::size_t, 3>> triangles;
 };
 
-// Rounds the exact surface to the float coordinates of the files: moved so that its lowest point
-// is at z = 0 and scaled so that its height is exactly `height` (every size option is the unit's
+// The exact union has edges far shorter than anything the unit needs: where the facet edges of
+// one leg cross the intersection curve with another leg a fraction of a millimetre from those of
+// the other leg (H/10^5 on the tetrapod). A volume mesher that protects the sharp intersection
+// curves would put tiny elements there, and a tiny element sets the explicit time step. So edges
+// shorter than min_edge (a fraction of the unit's size) are collapsed to their midpoints, never
+// flipping a face normal; this moves the surface by at most min_edge / 2. The checks after
+// rounding still apply to the result.
+InexactMesh to_inexact_without_short_edges(const ExactMesh& exact, double min_edge) {
+  InexactMesh mesh;
+  std::map<ExactMesh::Vertex_index, InexactMesh::Vertex_index> index;
+  for (auto v : exact.vertices()) {
+    const auto& q = exact.point(v);
+    index[v] = mesh.add_vertex(
+        Inexact::Point_3(CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z())));
+  }
+  for (auto f : exact.faces()) {
+    std::vector<InexactMesh::Vertex_index> vs;
+    for (auto v : CGAL::vertices_around_face(exact.halfedge(f), exact)) vs.push_back(index.at(v));
+    if (mesh.add_face(vs) == InexactMesh::null_face())
+      throw std::runtime_error("the exact surface is not a manifold polygon mesh");
+  }
+  if (min_edge > 0) {
+    namespace SMS = CGAL::Surface_mesh_simplification;
+    SMS::Edge_length_stop_predicate<double> stop(min_edge);
+    SMS::Bounded_normal_change_placement<SMS::Midpoint_placement<InexactMesh>> placement;
+    SMS::edge_collapse(
+        mesh, stop,
+        CGAL::parameters::get_cost(SMS::Edge_length_cost<InexactMesh>()).get_placement(placement));
+    mesh.collect_garbage();
+  }
+  return mesh;
+}
+
+// Rounds the surface to the float coordinates of the files: moved so that its lowest point is at
+// z = 0 and scaled so that its height is exactly `height` (every size option is the unit's
 // height: tetrapod H, dolos C, cube edge, V-Cross span).
-Surface round_to_float(const ExactMesh& mesh, double height) {
+Surface round_to_float(const InexactMesh& mesh, double height) {
   double zlo = HUGE_VAL, zhi = -HUGE_VAL;
   for (auto v : mesh.vertices()) {
-    const double z = CGAL::to_double(mesh.point(v).z());
+    const double z = mesh.point(v).z();
     zlo = std::min(zlo, z), zhi = std::max(zhi, z);
   }
   const double factor = height / (zhi - zlo);
   Surface out;
-  std::map<ExactMesh::Vertex_index, std::size_t> index;
+  std::map<InexactMesh::Vertex_index, std::size_t> index;
   for (auto v : mesh.vertices()) {
     const auto& q = mesh.point(v);
     index[v] = out.points.size();
-    out.points.push_back({static_cast<float>(factor * CGAL::to_double(q.x())),
-                          static_cast<float>(factor * CGAL::to_double(q.y())),
-                          static_cast<float>(factor * (CGAL::to_double(q.z()) - zlo))});
+    out.points.push_back({static_cast<float>(factor * q.x()), static_cast<float>(factor * q.y()),
+                          static_cast<float>(factor * (q.z() - zlo))});
   }
   for (auto f : mesh.faces()) {
     std::array<std::size_t, 3> t{};
@@ -430,7 +467,7 @@ int main(int argc, char** argv) {
       "Write a closed triangle surface of a concrete armour unit (tetrapod, dolos, cube, vcross)\n"
       "from its published proportions. Lengths in metres; z up, resting on z = 0."};
   std::string shape, output;
-  double size = 0, mass = 0, density = 2340, scale = 1, arm = 1.26;
+  double size = 0, mass = 0, density = 2340, scale = 1, arm = 1.26, min_edge = 0.005;
   TetrapodParams tp;
   DolosParams dp;
   app.add_option("shape", shape, "tetrapod | dolos | cube | vcross")->required();
@@ -451,11 +488,18 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--mid-from-tip", tp.mid_from_tip, "tetrapod distance C / H of D from the tip")
       ->capture_default_str();
+  app.add_option("--leg-phases", tp.phases,
+                 "tetrapod: turn of each leg's facets (top, then the three lower legs), in facets")
+      ->expected(4)
+      ->capture_default_str();
   app.add_option("--facets", tp.facets, "tetrapod: sides of each leg's cone")
       ->capture_default_str();
   app.add_option("--waist", dp.waist, "dolos waist ratio r (shank width / C)")
       ->capture_default_str();
   app.add_option("--fluke-tip", dp.fluke_tip, "dolos fluke tip width / C")->capture_default_str();
+  app.add_option("--min-edge", min_edge,
+                 "collapse edges shorter than this fraction of the size (0: keep the exact union)")
+      ->capture_default_str();
   app.add_option("--arm", arm, "vcross arm width a in m at the default span (scales with size)")
       ->capture_default_str();
   try {
@@ -515,15 +559,18 @@ int main(int argc, char** argv) {
       params = "a/S=" + std::to_string(arm / default_size);
     }
 
+    if (!(min_edge >= 0 && min_edge <= 0.05)) throw BadOption("--min-edge must be in [0, 0.05]");
+    const InexactMesh clean = to_inexact_without_short_edges(mesh, min_edge);
+
     // Size: given, or from the mass through the unit-size volume (the shape is exact up to
     // scaling, so the volume scales with the cube of the size).
     double length = size_opt->empty() ? default_size : size;
     if (!mass_opt->empty()) {
-      const double unit_volume = signed_volume(round_to_float(mesh, 1.0));
+      const double unit_volume = signed_volume(round_to_float(clean, 1.0));
       length = std::cbrt(mass / density / unit_volume);
     }
     length *= scale;
-    const Surface surface = round_to_float(mesh, length);
+    const Surface surface = round_to_float(clean, length);
     check_solid(surface);
 
     const std::string title = shape + " size=" + std::to_string(length) + "m " + params;
