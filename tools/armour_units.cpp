@@ -346,6 +346,26 @@ Surface round_to_float(const InexactMesh& mesh, double height) {
   return out;
 }
 
+// CGAL hands the union's vertices and faces back in an order that depends on heap addresses
+// (the same geometry comes out in a different order when, say, the output path is longer), so
+// the surface is put into a canonical order: vertices sorted by coordinates, each triangle
+// starting at its lowest vertex, triangles sorted. The same geometry then gives the same file.
+void canonicalize(Surface& s) {
+  std::vector<std::size_t> order(s.points.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return s.points[a] < s.points[b]; });
+  std::vector<std::size_t> rank(order.size());
+  std::vector<std::array<float, 3>> points(order.size());
+  for (std::size_t i = 0; i < order.size(); ++i) rank[order[i]] = i, points[i] = s.points[order[i]];
+  s.points = std::move(points);
+  for (auto& t : s.triangles) {
+    for (auto& v : t) v = rank[v];
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+  }
+  std::sort(s.triangles.begin(), s.triangles.end());
+}
+
 double signed_volume(const Surface& s) {
   double v = 0;
   for (const auto& t : s.triangles) {
@@ -575,7 +595,8 @@ int main(int argc, char** argv) {
       length = std::cbrt(mass / density / unit_volume);
     }
     length *= scale;
-    const Surface surface = round_to_float(clean, length);
+    Surface surface = round_to_float(clean, length);
+    canonicalize(surface);
     check_solid(surface);
 
     const std::string title = shape + " size=" + std::to_string(length) + "m " + params;
