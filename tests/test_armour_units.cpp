@@ -204,14 +204,18 @@ bool in_octagon(double u, double v, double h) {
 }
 
 // Dolos of overall length C: shank along x of across-flats r C between the fluke axes at
-// x = -+(C - rC)/2; fluke of length C along y at x < 0 and along z at x > 0, across-flats
-// tapering linearly from r C on the shank axis to t C at the tips; box C^3 resting on z = 0.
+// x = -+(C - rC)/2; fluke of length C along y at x < 0 and along z at x > 0, across-flats r C
+// where the shank meets it (|s| <= rC/2), tapering linearly from there to t C at the tips; box
+// C^3 resting on z = 0.
 struct Dolos {
-  double C, r = 0.32, t = 0.225;
+  double C, r = 0.32, t = 0.18;
   bool inside(const P3& p) const {
     const double x = p[0], y = p[1], z = p[2] - 0.5 * C, B = r * C, T = t * C;
     const double L = 0.5 * (C - B);
-    auto half_width = [&](double s) { return 0.5 * (B - (B - T) * std::abs(s) / (0.5 * C)); };
+    auto half_width = [&](double s) {
+      const double beyond = std::max(0.0, std::abs(s) - 0.5 * B);
+      return 0.5 * (B - (B - T) * beyond / (0.5 * (C - B)));
+    };
     if (std::abs(x) <= L && in_octagon(y, z, 0.5 * B)) return true;
     if (std::abs(y) <= 0.5 * C && in_octagon(z, x + L, half_width(y))) return true;
     return std::abs(z) <= 0.5 * C && in_octagon(x - L, y, half_width(z));
@@ -400,6 +404,7 @@ TEST(ArmourUnits, BadOptionsExitTwo) {
       "cube --size 2 --mass 3000",  // two sizes
       "cube --density 0",           // zero density
       "cube --bogus 1",             // unknown option
+      "cube --waist 0.3",           // a dolos option on a cube
   };
   for (const char* args : bad) {
     const ToolRun r = run_tool(std::string(args) + " " + out);

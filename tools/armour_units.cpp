@@ -14,9 +14,10 @@
 //  - dolos (Merrifield, East London, 1963). Size = overall length C (the unit fits a C x C x C
 //    box). A straight shank of regular octagonal section, across-flats r C (waist ratio r,
 //    0.32-0.34 as published), with a fluke of length C at each end, at right angles to the shank
-//    and to each other. The flukes are octagonal too and taper linearly from r C where they meet
-//    the shank to a tip width t C. t is not fixed by r alone; the default t = 0.225 is chosen so
-//    that r = 0.32 gives the published volume of about 0.16 C^3 (SPM 1984).
+//    and to each other. The flukes are octagonal too, of width r C where they meet the shank,
+//    tapering linearly from the shank's faces to a tip width t C. t is not fixed by r alone; the
+//    default t = 0.18 is chosen so that r = 0.32 gives the published volume of about 0.16 C^3
+//    (SPM 1984).
 //  - cube (plain concrete cube). Size = edge length.
 //  - vcross (the idealised cruciform "V-Cross" of Xiang et al. 2009 and the thesis, section 6.3.1).
 //    Two square-section bars (arm width a = 1.26 m) crossing at mid-length in one plane, one bar
@@ -203,8 +204,8 @@ ExactMesh tetrapod(const TetrapodParams& p) {
 }
 
 struct DolosParams {
-  double waist = 0.32;       // r: shank across-flats / C
-  double fluke_tip = 0.225;  // fluke tip across-flats / C
+  double waist = 0.32;      // r: shank across-flats / C
+  double fluke_tip = 0.18;  // fluke tip across-flats / C
 };
 
 ExactMesh dolos(const DolosParams& p) {
@@ -215,15 +216,15 @@ ExactMesh dolos(const DolosParams& p) {
   std::vector<Vec> shank;
   add_octagon(shank, o + Vec{-L, 0, 0}, ey, ez, B);
   add_octagon(shank, o + Vec{L, 0, 0}, ey, ez, B);
-  // Each fluke is one convex double frustum: tip octagon, full-width octagon on the shank axis,
-  // tip octagon.
+  // Each fluke is one convex piece: full width B where the shank meets it (|s| <= B/2, so the
+  // shank's flats run flush into the fluke's), tapering linearly to width T at the tips.
   std::vector<Vec> fluke_y, fluke_z;
   for (double sgn : {-1.0, 1.0}) {
     add_octagon(fluke_y, o + Vec{-L, 0.5 * sgn, 0}, ez, ex, T);
     add_octagon(fluke_z, o + Vec{L, 0, 0.5 * sgn}, ex, ey, T);
+    add_octagon(fluke_y, o + Vec{-L, 0.5 * B * sgn, 0}, ez, ex, B);
+    add_octagon(fluke_z, o + Vec{L, 0, 0.5 * B * sgn}, ex, ey, B);
   }
-  add_octagon(fluke_y, o + Vec{-L, 0, 0}, ez, ex, B);
-  add_octagon(fluke_z, o + Vec{L, 0, 0}, ex, ey, B);
   std::vector<ExactMesh> pieces;
   pieces.push_back(convex_piece(shank));
   pieces.push_back(convex_piece(fluke_y));
@@ -495,6 +496,7 @@ int main(int argc, char** argv) {
   double size = 0, mass = 0, density = 2340, scale = 1, arm = 1.26, min_edge = 0.005;
   TetrapodParams tp;
   DolosParams dp;
+  std::map<std::string, std::vector<CLI::Option*>> shape_options;  // options of one shape only
   app.add_option("shape", shape, "tetrapod | dolos | cube | vcross")->required();
   app.add_option("-o,--output", output, "output file: .stl (binary), .obj or .off")->required();
   auto* size_opt = app.add_option(
@@ -507,26 +509,37 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--scale", scale, "multiply every length by this (e.g. a model scale)")
       ->capture_default_str();
-  app.add_option("--tip-diameter", tp.tip_diameter, "tetrapod leg tip diameter A / H")
-      ->capture_default_str();
-  app.add_option("--mid-diameter", tp.mid_diameter, "tetrapod leg diameter D / H at --mid-from-tip")
-      ->capture_default_str();
-  app.add_option("--mid-from-tip", tp.mid_from_tip, "tetrapod distance C / H of D from the tip")
-      ->capture_default_str();
-  app.add_option("--leg-phases", tp.phases,
-                 "tetrapod: turn of each leg's facets (top, then the three lower legs), in facets")
-      ->expected(4)
-      ->capture_default_str();
-  app.add_option("--facets", tp.facets, "tetrapod: sides of each leg's cone")
-      ->capture_default_str();
-  app.add_option("--waist", dp.waist, "dolos waist ratio r (shank width / C)")
-      ->capture_default_str();
-  app.add_option("--fluke-tip", dp.fluke_tip, "dolos fluke tip width / C")->capture_default_str();
+  shape_options["tetrapod"].push_back(
+      app.add_option("--tip-diameter", tp.tip_diameter, "tetrapod leg tip diameter A / H")
+          ->capture_default_str());
+  shape_options["tetrapod"].push_back(
+      app.add_option("--mid-diameter", tp.mid_diameter,
+                     "tetrapod leg diameter D / H at --mid-from-tip")
+          ->capture_default_str());
+  shape_options["tetrapod"].push_back(
+      app.add_option("--mid-from-tip", tp.mid_from_tip, "tetrapod distance C / H of D from the tip")
+          ->capture_default_str());
+  shape_options["tetrapod"].push_back(
+      app.add_option(
+             "--leg-phases", tp.phases,
+             "tetrapod: turn of each leg's facets (top, then the three lower legs), in facets")
+          ->expected(4)
+          ->capture_default_str());
+  shape_options["tetrapod"].push_back(
+      app.add_option("--facets", tp.facets, "tetrapod: sides of each leg's cone")
+          ->capture_default_str());
+  shape_options["dolos"].push_back(
+      app.add_option("--waist", dp.waist, "dolos waist ratio r (shank width / C)")
+          ->capture_default_str());
+  shape_options["dolos"].push_back(
+      app.add_option("--fluke-tip", dp.fluke_tip, "dolos fluke tip width / C")
+          ->capture_default_str());
   app.add_option("--min-edge", min_edge,
                  "collapse edges shorter than this fraction of the size (0: keep the exact union)")
       ->capture_default_str();
-  app.add_option("--arm", arm, "vcross arm width a in m at the default span (scales with size)")
-      ->capture_default_str();
+  shape_options["vcross"].push_back(
+      app.add_option("--arm", arm, "vcross arm width a in m at the default span (scales with size)")
+          ->capture_default_str());
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -540,6 +553,10 @@ int main(int argc, char** argv) {
     const auto it = kShapes.find(shape);
     if (it == kShapes.end())
       throw BadOption("unknown shape '" + shape + "' (tetrapod, dolos, cube, vcross)");
+    for (const auto& [owner, options] : shape_options)
+      for (const CLI::Option* o : options)
+        if (owner != shape && !o->empty())
+          throw BadOption(o->get_name() + " applies to " + owner + " only, not to " + shape);
     auto positive = [](double v, const char* what) {
       if (!(std::isfinite(v) && v > 0)) throw BadOption(std::string(what) + " must be > 0");
     };
