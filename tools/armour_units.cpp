@@ -9,8 +9,9 @@
 //    from the tetrapod specification drawing of the Shore Protection Manual (CERC 1984, vol. II,
 //    ch. 7) and Hudson (1974, WES MP H-74-2): leg tip diameter A = 0.302 H, leg length from the
 //    centre to the tip face F = 0.644 H, the leg diameter D = 0.470 H at C = 0.477 H from the tip,
-//    the truncated cone continued to the centre; volume 0.280 H^3. We take A, D and C as given and
-//    derive F from H so that the height is exactly H: F = 3/4 (H - A sqrt(2)/3) = 0.643 H.
+//    the truncated cone continued to the centre; volume 0.280 H^3 (how this reading of the drawing
+//    was checked: scenes/meshes/README.md). We take A, D and C as given and derive F from H so
+//    that the height is exactly H: F = 3/4 (H - A sqrt(2)/3) = 0.643 H.
 //  - dolos (Merrifield, East London, 1963). Size = overall length C (the unit fits a C x C x C
 //    box). A straight shank of regular octagonal section, across-flats r C (waist ratio r,
 //    0.32-0.34 as published), with a fluke of length C at each end, at right angles to the shank
@@ -27,12 +28,12 @@
 //
 // The tetrapod and the dolos are unions of convex pieces (frustums with N facets, octagonal
 // prisms). Each piece is built as an exact convex hull and the pieces are united with CGAL's
-// corefinement in the exact-constructions kernel, so the union itself is exact. The cube and the
-// V-Cross are written directly. The result is rounded to the
-// single-precision coordinates that STL stores and then checked in that rounded form: closed,
-// every edge shared by exactly two faces in opposite directions, manifold vertices, one
-// component, no degenerate face, no self-intersection, positive volume. A surface that fails is
-// not written (exit 1).
+// corefinement in the exact-constructions kernel, so the union itself is exact; edges shorter
+// than --min-edge are then collapsed. The cube and the V-Cross are written directly. The result
+// is rounded to the single-precision coordinates that STL stores, put in a canonical order and
+// checked in that rounded form: closed, every edge shared by exactly two faces in opposite
+// directions, manifold vertices, one component, no degenerate face, no self-intersection,
+// positive volume. A surface that fails is not written (exit 1).
 //
 // Placement: z is up; the unit rests with its lowest point on z = 0 and its vertical axis on
 // x = y = 0 (tetrapod: one leg up, three down, one lower leg towards +x; dolos: shank along x,
