@@ -518,6 +518,14 @@ std::vector<PackedParticle> random_packing(const PackingParams& p, PackingStats&
     r[i] = 0.5 * diam[i] / scale;
     volume += 4.0 / 3.0 * kPi * r[i] * r[i] * r[i];
   }
+  // Poured spheres do not get denser than random close packing (0.64 for equal spheres, a
+  // little more for mixed sizes): more particles than that cannot fit, and settling them
+  // first would take long.
+  const double fill = volume * scale * scale * scale / (box.section() * (box.hi.z() - box.lo.z()));
+  if (fill > 0.66)
+    bad("count", "the particles' volume is " + num(fill) +
+                     " of the container's, more than a poured packing reaches (about 0.6): use "
+                     "fewer particles or a larger container");
   Walls walls{box.cylinder, box.lo / scale, box.hi / scale, box.radius / scale};
   // Random sequential addition without overlap in a column above the floor, at a solid
   // fraction of 0.3 (far below the jamming of random sequential addition, about 0.38, so a

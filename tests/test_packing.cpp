@@ -541,14 +541,19 @@ TEST(PackingScene, BadInputNamesFileLineAndKey) {
   write_text(dir / "bad.csv", "id,shape,x,y,z,radius,qw,qx,qy,qz\n1,sphere,0,0,1\n");
   int i = 0;
   for (const auto& c : cases) {
-    const fs::path scene = dir / ("s" + std::to_string(i++) + ".toml");
+    std::string name = "s";  // built by appending: GCC 12 warns (-Wrestrict) on "s" + string
+    name += std::to_string(i++);
+    name += ".toml";
+    const fs::path scene = dir / name;
     write_text(scene, std::string(kSceneHead) + "\n[[packings]]\n" + c.body);
     try {
       femdem::load_scene(scene.string());
       ADD_FAILURE() << c.body;
     } catch (const InputError& e) {
       EXPECT_EQ(e.key, c.key) << e.describe();
-      if (c.line > 0) EXPECT_EQ(e.line, c.line) << e.describe();
+      if (c.line > 0) {
+        EXPECT_EQ(e.line, c.line) << e.describe();
+      }
       EXPECT_EQ(e.file, scene.string()) << e.describe();
     }
   }
