@@ -597,3 +597,23 @@ TEST(PackingCli, PackWritesTheFileAndReportsIt) {
 }
 
 }  // namespace
+
+namespace {
+
+// The shipped packing for die compaction (scenes/packings/powder_die_250.csv, written by the
+// `femdem pack` command in docs/OUTPUTS.md): complete, without overlaps, inside its die.
+TEST(Packing, ShippedDiePackingIsValid) {
+  const Packing pk =
+      femdem::read_packing(std::string(FEMDEM_SOURCE_DIR) + "/scenes/packings/powder_die_250.csv");
+  ASSERT_EQ(pk.particles.size(), 250u);
+  PackingParams p;
+  p.container = "cylinder";
+  p.radius = 4e-3;
+  p.height = 12e-3;
+  EXPECT_GE(min_relative_gap(pk), 0.0);
+  expect_inside(p, pk);
+  EXPECT_NE(pk.params_text.find("count = 250"), std::string::npos) << pk.params_text;
+  EXPECT_NE(pk.params_text.find("friction = 0.5"), std::string::npos) << pk.params_text;
+}
+
+}  // namespace
