@@ -633,7 +633,8 @@ std::optional<PackingParamError> check_packing_params(const PackingParams& p) {
                                   "': use \"random\", \"simple_cubic\", \"body_centred_cubic\" or "
                                   "\"face_centred_cubic\"");
   if (p.count < 0 || p.count > 1000000)
-    return err("count", "must lie in [1, 1000000], got " + std::to_string(p.count));
+    return err("count",
+               "must lie in [0, 1000000] (0: every lattice site), got " + std::to_string(p.count));
   if (!lattice && p.count < 1)
     return err("count", "a random packing needs the number of particles (count >= 1)");
   if (p.distribution == "monodisperse") {

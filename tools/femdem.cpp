@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The femdem command-line program: `femdem run|check|sweep SCENE ...` (see docs/SCENES.md and
-// /work/shared/SCENE_FORMAT.md). Exit codes: 0 success, 2 bad input, 3 unstable, 1 otherwise.
+// The femdem command-line program: `femdem run|check|sweep SCENE ...`, `femdem pack FILE ...` (see
+// docs/SCENES.md and /work/shared/SCENE_FORMAT.md). Exit codes: 0 success, 2 bad input, 3 unstable,
+// 1 otherwise.
 #include <fmt/core.h>
 
 #include <CLI/CLI.hpp>
