@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The femdem command-line program: `femdem run|check|sweep SCENE ...` (see docs/SCENES.md and
-// /work/shared/SCENE_FORMAT.md). Exit codes: 0 success, 2 bad input, 3 unstable, 1 otherwise.
+// The femdem command-line program: `femdem run|check|sweep SCENE ...`, `femdem pack FILE ...` (see
+// docs/SCENES.md and /work/shared/SCENE_FORMAT.md). Exit codes: 0 success, 2 bad input, 3 unstable,
+// 1 otherwise.
 #include <fmt/core.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -15,6 +17,7 @@
 #include "elements/tet_geometry.hpp"
 #include "engine/errors.hpp"
 #include "femdem_version.hpp"
+#include "io/packing.hpp"
 #include "io/runner.hpp"
 #include "io/scene_reader.hpp"
 #include "io/strain_path.hpp"
@@ -250,6 +253,43 @@ std::string default_out_dir(const femdem::SceneFile& scene) {
 
 }  // namespace
 
+// `femdem pack OUT ...`: generates a packing, writes it and prints what it got.
+int pack(const femdem::PackingParams& params, const std::string& out, bool quiet) {
+  if (auto e = femdem::check_packing_params(params)) {
+    std::string option = e->key;
+    std::replace(option.begin(), option.end(), '_', '-');
+    throw femdem::InputError(e->message, {}, 0, 0, "--" + option);
+  }
+  const auto start = std::chrono::steady_clock::now();
+  femdem::Packing packing;
+  try {
+    packing = femdem::generate_packing(params);
+  } catch (femdem::InputError& e) {
+    std::replace(e.key.begin(), e.key.end(), '_', '-');
+    if (!e.key.empty()) e.key = "--" + e.key;
+    throw;
+  }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  femdem::write_packing(out, packing);
+  if (quiet) return kExitOk;
+  const femdem::PackingStats& s = packing.stats;
+  fmt::print("{}: {} particles, {}\n", out, packing.particles.size(), params.arrangement);
+  fmt::print("  packing fraction  {:.4f} (bed of height {:g} m); {:.4f} of the container\n",
+             s.packing_fraction, s.bed_height, s.container_fraction);
+  if (std::isfinite(s.core_packing_fraction))
+    fmt::print("  core fraction     {:.4f} (two largest diameters from walls, floor and top)\n",
+               s.core_packing_fraction);
+  if (std::isfinite(s.min_gap))
+    fmt::print("  smallest gap      {:.3g} of the radii sum\n", s.min_gap);
+  if (s.settle_steps > 0)
+    fmt::print(
+        "  settling          {} steps, {:.4g} sqrt(d/g), {}, last max speed {:.3g} sqrt(g d)\n",
+        s.settle_steps, s.settle_time, s.at_rest ? "at rest" : "NOT at rest", s.max_speed);
+  fmt::print("  time              {:.3f} s\n", seconds);
+  return kExitOk;
+}
+
 // `femdem check SCENE --material NAME --strain-path FILE`: the stress path of one material point
 // under a prescribed deformation history, as CSV on standard output.
 int material_point(const femdem::SceneFile& scene, const std::string& name,
@@ -361,6 +401,44 @@ int main(int argc, char** argv) {
   sweep->add_flag("--no-plot", no_plot, "Do not call tools/plot_sweep.py at the end");
   sweep->add_flag("--quiet", sweep_options.quiet, "Print nothing but errors");
 
+  CLI::App* pack_cmd = app.add_subcommand(
+      "pack",
+      "Generate a particle packing (lattice, or random and settled under gravity) and write it "
+      "to a file for [[packings]] in scenes (docs/SCENES.md, docs/OUTPUTS.md)");
+  femdem::PackingParams pp;
+  std::string pack_out;
+  bool pack_quiet = false;
+  std::vector<double> pack_size;
+  pack_cmd->add_option("out", pack_out, "Packing file to write (CSV)")->required();
+  pack_cmd->add_option("--container", pp.container, "box (default) or cylinder");
+  pack_cmd->add_option("--size", pack_size, "Box size lx ly lz (m); the box spans [0, l]")
+      ->expected(3)
+      ->delimiter(',');
+  pack_cmd->add_option("--radius", pp.radius, "Cylinder radius (m); axis z through the origin");
+  pack_cmd->add_option("--height", pp.height, "Cylinder height (m)");
+  pack_cmd->add_option("--arrangement", pp.arrangement,
+                       "random (default: dropped and settled under gravity), simple_cubic, "
+                       "body_centred_cubic, face_centred_cubic");
+  pack_cmd->add_option("--count", pp.count,
+                       "Number of particles (random: required; lattice: default all that fit)");
+  pack_cmd->add_option("--distribution", pp.distribution,
+                       "monodisperse (default), uniform, lognormal");
+  pack_cmd->add_option("--diameter", pp.diameter, "Monodisperse diameter (m)");
+  pack_cmd->add_option("--diameter-min", pp.diameter_min,
+                       "Uniform: smallest diameter; lognormal: clip (default mean exp(-3 sigma))");
+  pack_cmd->add_option("--diameter-max", pp.diameter_max,
+                       "Uniform: largest diameter; lognormal: clip (default mean exp(3 sigma))");
+  pack_cmd->add_option("--diameter-mean", pp.diameter_mean, "Lognormal: mean diameter (m)");
+  pack_cmd->add_option("--sigma", pp.sigma, "Lognormal: standard deviation of ln d");
+  pack_cmd->add_option("--seed", pp.seed, "Random seed (default 1)");
+  pack_cmd->add_option("--shape", pp.shape,
+                       "Shape name stored per particle (default sphere; a CAD shape is settled "
+                       "by its bounding sphere)");
+  pack_cmd->add_option("--orientation", pp.orientation,
+                       "identity or random (default: identity for spheres, random otherwise)");
+  pack_cmd->add_option("--friction", pp.friction, "Friction while settling (default 0.5)");
+  pack_cmd->add_flag("--quiet", pack_quiet, "Print nothing but errors");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -369,6 +447,10 @@ int main(int argc, char** argv) {
   }
 
   try {
+    if (pack_cmd->parsed()) {
+      if (!pack_size.empty()) pp.size = femdem::Vec3(pack_size[0], pack_size[1], pack_size[2]);
+      return pack(pp, pack_out, pack_quiet);
+    }
     if (check->parsed()) {
       const femdem::SceneFile scene = femdem::load_scene(scene_path, overrides);
       if (material_name.empty() != strain_path.empty())
