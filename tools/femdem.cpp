@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The femdem command-line program: `femdem run|check|sweep SCENE ...` (see docs/SCENES.md and
+// The femdem command-line program: `femdem run|check|sweep SCENE ...` and `femdem mesh
+// SURFACE --size H` (see docs/SCENES.md and
 // /work/shared/SCENE_FORMAT.md). Exit codes: 0 success, 2 bad input, 3 unstable, 1 otherwise.
 #include <fmt/core.h>
 
@@ -15,6 +16,8 @@
 #include "elements/tet_geometry.hpp"
 #include "engine/errors.hpp"
 #include "femdem_version.hpp"
+#include "io/cad_mesh.hpp"
+#include "io/gmsh_io.hpp"
 #include "io/runner.hpp"
 #include "io/scene_reader.hpp"
 #include "io/strain_path.hpp"
@@ -335,6 +338,34 @@ int main(int argc, char** argv) {
   sweep->add_flag("--no-plot", no_plot, "Do not call tools/plot_sweep.py at the end");
   sweep->add_flag("--quiet", sweep_options.quiet, "Print nothing but errors");
 
+  CLI::App* mesh = app.add_subcommand(
+      "mesh",
+      "Mesh a closed CAD surface (STL, OBJ, PLY, OFF, glTF, 3MF, ... anything assimp reads) "
+      "into TET10 elements and write a gmsh .msh file");
+  std::string mesh_input, mesh_output;
+  femdem::CadMeshOptions mesh_options;
+  bool no_perturb = false, no_exude = false;
+  mesh->add_option("input", mesh_input, "Surface file")->required();
+  mesh->add_option("--size", mesh_options.element_size,
+                   "Target edge length of the tetrahedra, in m (after --scale)")
+      ->required()
+      ->check(CLI::PositiveNumber);
+  mesh->add_option("--scale", mesh_options.scale,
+                   "Factor from the file's units to m, e.g. 0.001 for mm (default 1)")
+      ->check(CLI::PositiveNumber);
+  mesh->add_option("-o,--output", mesh_output, "Output .msh file (default: INPUT with .msh)");
+  mesh->add_option("--feature-angle", mesh_options.feature_angle,
+                   "Edges whose faces' normals differ by more than this (degrees) are kept "
+                   "sharp (default 60)")
+      ->check(CLI::Range(0.0, 180.0));
+  mesh->add_flag("--odt", mesh_options.odt, "ODT smoothing after refinement (slower)");
+  mesh->add_flag("--lloyd", mesh_options.lloyd, "Lloyd smoothing after refinement (slower)");
+  mesh->add_flag("--no-perturb", no_perturb, "Skip the sliver perturbation");
+  mesh->add_flag("--no-exude", no_exude, "Skip the sliver exudation");
+  bool no_repair = false;
+  mesh->add_flag("--no-repair", no_repair,
+                 "Report what would be repaired (orientation, degenerate triangles) as errors");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -343,12 +374,35 @@ int main(int argc, char** argv) {
   }
 
   try {
+    if (mesh->parsed()) {
+      mesh_options.perturb = !no_perturb;
+      mesh_options.exude = !no_exude;
+      mesh_options.repair = !no_repair;
+      if (mesh_output.empty())
+        mesh_output = std::filesystem::path(mesh_input).replace_extension(".msh").string();
+      if (std::filesystem::path(mesh_output).extension() != ".msh")
+        throw femdem::InputError("the output must be a .msh file", mesh_output, 0, 0, "-o");
+      if (std::filesystem::weakly_canonical(mesh_output) ==
+          std::filesystem::weakly_canonical(mesh_input))
+        throw femdem::InputError("the output would overwrite the input", mesh_output, 0, 0, "-o");
+      femdem::CadMeshReport report;
+      const femdem::Tet10Mesh m = femdem::mesh_cad_file(mesh_input, mesh_options, &report);
+      femdem::write_gmsh(m, mesh_output);
+      fmt::print("{}
+", femdem::format_cad_report(report));
+      fmt::print("{}", indent(femdem::format_mesh_quality(femdem::mesh_quality(m)), ""));
+      fmt::print("wrote {}
+", mesh_output);
+      return kExitOk;
+    }
     if (check->parsed()) {
       const femdem::SceneFile scene = femdem::load_scene(scene_path, overrides);
       if (material_name.empty() != strain_path.empty())
         throw femdem::InputError("--material and --strain-path go together");
       if (!material_name.empty())
         return material_point(scene, material_name, strain_path, substeps);
+      for (const auto& note : scene.notes) fmt::print("{}\n", note);
+      if (!scene.notes.empty()) fmt::print("\n");
       print_summary(scene);
       return kExitOk;
     }
