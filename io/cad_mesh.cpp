@@ -4,6 +4,10 @@
 // headers take minutes to compile; keep it that way.
 #include "io/cad_mesh.hpp"
 
+// GCC 12 warns about boost::graph edge descriptors (inside CGAL's feature detection) that "may
+// be used uninitialized"; a false positive in library code this file cannot change.
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Mesh_complex_3_in_triangulation_3.h>
 #include <CGAL/Mesh_criteria_3.h>

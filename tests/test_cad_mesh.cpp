@@ -474,9 +474,9 @@ TEST(CadMeshCli, BrokenSurfacesExitWithCode2AndSayWhatAndWhere) {
       {"inconsistent.obj", "orientation is inconsistent: 3 edge(s)", "--no-repair"},
       {"self_intersecting.stl", "pair(s) of self-intersecting faces, first input triangles "},
       {"non_manifold.stl", "not manifold: 1 edge(s) shared by more than two triangles"},
-      {"empty.stl", "empty"},
-      {"empty.obj", "empty"},
-      {"points.obj", "empty"},
+      {"empty.stl", "empty: no triangles"},
+      {"empty.obj", "not a mesh: assimp says"},
+      {"points.obj", "empty: no triangles"},
       {"text.stl", "not a mesh: assimp says"},
       {"missing.stl", "does not exist"},
   };

@@ -388,11 +388,9 @@ int main(int argc, char** argv) {
       femdem::CadMeshReport report;
       const femdem::Tet10Mesh m = femdem::mesh_cad_file(mesh_input, mesh_options, &report);
       femdem::write_gmsh(m, mesh_output);
-      fmt::print("{}
-", femdem::format_cad_report(report));
+      fmt::print("{}\n", femdem::format_cad_report(report));
       fmt::print("{}", indent(femdem::format_mesh_quality(femdem::mesh_quality(m)), ""));
-      fmt::print("wrote {}
-", mesh_output);
+      fmt::print("wrote {}\n", mesh_output);
       return kExitOk;
     }
     if (check->parsed()) {
