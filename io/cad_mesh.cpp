@@ -383,15 +383,19 @@ Tet10Mesh mesh_surface(TriangleSurface surface, const CadMeshOptions& o, const s
   domain.detect_features(o.feature_angle);
 
   // Mesh_3's size bounds are radii: facet_size bounds the surface Delaunay balls (the
-  // circumradius of an equilateral triangle of edge h is h / sqrt 3), cell_size the
-  // circumradius of the tetrahedra (h sqrt 6 / 4 for the regular one). edge_size is the spacing
-  // of the protecting balls along sharp edges, i.e. an edge length.
+  // circumradius of an equilateral triangle of edge b is b / sqrt 3), cell_size the
+  // circumradius of the tetrahedra (b sqrt 6 / 4 for the regular one). edge_size is the spacing
+  // of the protecting balls along sharp edges, i.e. an edge length. With b = h the mean edge
+  // came out at 0.82 h (sphere, cube and cylinder alike: upper bounds give shorter edges), so
+  // the bounds are b = 1.2 h to make element_size the mean edge length, like the generators'.
+  constexpr double kBoundPerSize = 1.2;
+  const double b = kBoundPerSize * h;
   const double facet_distance = o.facet_distance > 0.0 ? o.facet_distance : h / 10.0;
   namespace P = CGAL::parameters;
-  const Criteria criteria(P::edge_size = h, P::facet_angle = o.facet_angle,
-                          P::facet_size = h / std::sqrt(3.0), P::facet_distance = facet_distance,
+  const Criteria criteria(P::edge_size = b, P::facet_angle = o.facet_angle,
+                          P::facet_size = b / std::sqrt(3.0), P::facet_distance = facet_distance,
                           P::cell_radius_edge_ratio = o.cell_radius_edge_ratio,
-                          P::cell_size = h * std::sqrt(6.0) / 4.0);
+                          P::cell_size = b * std::sqrt(6.0) / 4.0);
   // No time limits (0 = none): a time limit makes the result depend on the machine's load.
   C3t3 c3t3 = CGAL::make_mesh_3<C3t3>(
       domain, criteria,
