@@ -312,15 +312,38 @@ SurfaceMesh checked_surface(TriangleSurface surface, const CadMeshOptions& o,
                      path);
   }
 
-  // Outward: orient_to_bound_a_volume also gets nested shells (a hollow part) right, where a
-  // single volume sign would not.
+  // Outward. With several shells (a hollow part) each must face away from the material, which
+  // orient_to_bound_a_volume sorts out by nesting depth; one volume sign could not. (Mesh_3
+  // itself decides inside by ray parity, but the reported volume and any later use of the
+  // surface need the orientation right.)
   const double volume_before = PMP::volume(mesh);
-  if (!PMP::is_outward_oriented(mesh) || volume_before < 0.0) {
+  {
+    auto fcc = mesh.add_property_map<SurfaceMesh::Face_index, std::size_t>("f:cc").first;
+    rep.components = static_cast<std::int64_t>(PMP::connected_components(mesh, fcc));
+    mesh.remove_property_map(fcc);
+  }
+  if (rep.components > 1) {
+    SurfaceMesh oriented = mesh;
+    PMP::orient_to_bound_a_volume(oriented);
+    std::int64_t flipped = 0;
+    for (auto f : mesh.faces())
+      flipped += mesh.target(mesh.halfedge(f)) != oriented.target(oriented.halfedge(f)) ||
+                 mesh.source(mesh.halfedge(f)) != oriented.source(oriented.halfedge(f));
+    if (flipped > 0) {
+      if (!o.repair)
+        throw InputError("orientation: " + std::to_string(flipped) +
+                             " triangle(s) of nested shells face into the material",
+                         path);
+      mesh = std::move(oriented);
+      rep.repairs.push_back("reversed " + std::to_string(flipped) +
+                            " triangle(s) of nested shells to face away from the material");
+    }
+  } else if (volume_before < 0.0) {
     if (!o.repair)
       throw InputError("inside out: the surface's triangles face inwards (enclosed volume " +
                            fmt_num(volume_before) + ")",
                        path);
-    PMP::orient_to_bound_a_volume(mesh);
+    PMP::reverse_face_orientations(mesh);
     rep.repairs.push_back("reversed the orientation: the surface was inside out");
   }
   rep.surface_volume = PMP::volume(mesh);
@@ -329,11 +352,6 @@ SurfaceMesh checked_surface(TriangleSurface surface, const CadMeshOptions& o,
   if (!(rep.surface_volume > 1e-12 * diag * diag * diag))
     throw InputError(
         "degenerate: the surface encloses no volume (" + fmt_num(rep.surface_volume) + ")", path);
-  {
-    auto fccmap = mesh.add_property_map<SurfaceMesh::Face_index, std::size_t>("f:cc").first;
-    rep.components = static_cast<std::int64_t>(PMP::connected_components(mesh, fccmap));
-    mesh.remove_property_map(fccmap);
-  }
   return mesh;
 }
 

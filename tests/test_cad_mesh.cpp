@@ -292,7 +292,7 @@ TEST(CadMesh, InvertedAndInconsistentSurfacesAreRepairedOrRefused) {
 
 TEST(CadMesh, NestedShellsMeshTheSpaceBetweenThem) {
   // A hollow cube: outer [0, 3]^3, inner [1, 2]^3, both given outward (as a careless exporter
-  // would): the orientation repair turns the inner one inwards.
+  // would): the orientation repair turns the inner one's 12 triangles inwards.
   TriangleSurface s = cube(3.0);
   const TriangleSurface inner = cube(1.0, Vec3(1, 1, 1));
   const auto off = static_cast<std::int32_t>(s.points.size());
@@ -301,6 +301,10 @@ TEST(CadMesh, NestedShellsMeshTheSpaceBetweenThem) {
   femdem::CadMeshReport rep;
   const auto m = femdem::mesh_surface(s, options(0.5), "hollow", &rep);
   EXPECT_EQ(rep.components, 2);
+  EXPECT_NEAR(rep.surface_volume, 26.0, 1e-12);
+  ASSERT_EQ(rep.repairs.size(), 1u);
+  EXPECT_TRUE(contains(rep.repairs[0], "reversed 12 triangle(s) of nested shells"))
+      << rep.repairs[0];
   EXPECT_NEAR(mesh_volume(m), 26.0, 1e-9);
 }
 
@@ -431,6 +435,12 @@ TEST(CadMeshCli, MeshesACubeAndPrintsTheQuality) {
   const auto r2 = run_femdem("mesh '" + (d / "cube.stl").string() + "' --size 0.5");
   ASSERT_EQ(r2.code, 0) << r2.output;
   EXPECT_TRUE(fs::exists(d / "cube.msh"));
+  // --scale: a 100 mm cube.
+  write_stl_binary(cube(100.0), d / "cube_mm.stl");
+  const auto r3 = run_femdem("mesh '" + (d / "cube_mm.stl").string() +
+                             "' --size 0.05 --scale 0.001 -o '" + (d / "mm.msh").string() + "'");
+  ASSERT_EQ(r3.code, 0) << r3.output;
+  EXPECT_NEAR(mesh_volume(femdem::read_gmsh((d / "mm.msh").string())), 1e-3, 1e-15);
 }
 
 struct BadCase {
