@@ -64,10 +64,14 @@ struct CadMeshOptions {
   double facet_angle = 25.0;    // lower bound of the surface triangles' angles (degrees)
   double facet_distance = 0.0;  // surface approximation error; 0: element_size / 10
   double cell_radius_edge_ratio = 3.0;
-  bool odt = false;     // ODT smoothing (slower; see docs/VALIDATION.md for its effect)
-  bool lloyd = false;   // Lloyd smoothing
-  bool perturb = true;  // sliver perturbation
-  bool exude = true;    // sliver exudation
+  // ODT smoothing: on the test shapes it raised the 5th-percentile dihedral angle from 31 to
+  // 36-38 degrees and cut the worst aspect ratio from 5.7-7.4 to 4.6-5.2, for 1.3-2.4x the
+  // meshing time (docs/VALIDATION.md, section 6); the explicit time step follows the worst
+  // element, and the cache meshes once, so it is on by default.
+  bool odt = true;
+  bool lloyd = false;                  // Lloyd smoothing
+  bool perturb = true;                 // sliver perturbation
+  bool exude = true;                   // sliver exudation
   double perturb_sliver_bound = 10.0;  // degrees; perturbation stops when no angle is below
   unsigned seed = 0;                   // CGAL's random generator
   bool repair = true;                  // false: report what would be repaired as errors instead
