@@ -64,10 +64,10 @@ struct CadMeshOptions {
   double facet_angle = 25.0;    // lower bound of the surface triangles' angles (degrees)
   double facet_distance = 0.0;  // surface approximation error; 0: element_size / 10
   double cell_radius_edge_ratio = 3.0;
-  // ODT smoothing: on the test shapes it raised the 5th-percentile dihedral angle from 31 to
-  // 36-38 degrees and cut the worst aspect ratio from 5.7-7.4 to 4.6-5.2, for 1.3-2.4x the
-  // meshing time (docs/VALIDATION.md, section 6); the explicit time step follows the worst
-  // element, and the cache meshes once, so it is on by default.
+  // ODT smoothing: on the test shapes it raised the 5th-percentile dihedral angle from 30-32 to
+  // 36-39 degrees and lowered the worst aspect ratio on 7 of 8 meshes (sphere at h 0.1: 5.7 to
+  // 4.6), for 1.3-2.4x the CPU time (docs/VALIDATION.md, section 6); the explicit time step
+  // follows the worst element, and the cache meshes once, so it is on by default.
   bool odt = true;
   bool lloyd = false;                  // Lloyd smoothing
   bool perturb = true;                 // sliver perturbation
