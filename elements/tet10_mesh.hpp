@@ -37,4 +37,11 @@ struct Tet10Mesh {
   std::vector<Tet10> elements;
 };
 
+// TET4 -> TET10 promotion, shared by every mesh source that produces linear tetrahedra (gmsh
+// TET4 files, CAD meshing). Elements whose node 4 is -1 are taken as TET4 (corners 0..3 set,
+// 4..9 unset): each gets one node at the midpoint of every edge, shared by all the elements
+// around that edge, and reused from any complete TET10 element on the same edge. New nodes are
+// appended in element order, edge order kTet10Edges, so the result is deterministic.
+void add_mid_edge_nodes(Tet10Mesh& mesh);
+
 }  // namespace femdem

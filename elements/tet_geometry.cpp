@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
+#include <vector>
 
 namespace femdem {
 
@@ -158,6 +160,8 @@ MeshQuality mesh_quality(const Tet10Mesh& mesh) {
   q.max_edge = 0.0;
   double sum_abs = 0.0;
   std::vector<double> vols(mesh.elements.size()), sj(mesh.elements.size());
+  std::vector<double> min_angle(mesh.elements.size()), aspect(mesh.elements.size());
+  double edge_sum = 0.0;
   for (std::size_t e = 0; e < mesh.elements.size(); ++e) {
     const auto& t = mesh.elements[e];
     const Vec3 &a = mesh.nodes[t[0]], &b = mesh.nodes[t[1]], &c = mesh.nodes[t[2]],
@@ -169,18 +173,31 @@ MeshQuality mesh_quality(const Tet10Mesh& mesh) {
     q.max_volume = std::max(q.max_volume, v);
     for (const auto& ed : kTet10Edges) {
       const double l = (mesh.nodes[t[ed[1]]] - mesh.nodes[t[ed[0]]]).norm();
+      edge_sum += l;
       q.min_edge = std::min(q.min_edge, l);
       q.max_edge = std::max(q.max_edge, l);
     }
     const auto ang = tet_dihedral_angles(a, b, c, d);
+    min_angle[e] = *std::min_element(ang.begin(), ang.end());
     for (double x : ang) {
       q.min_dihedral_deg = std::min(q.min_dihedral_deg, x);
       q.max_dihedral_deg = std::max(q.max_dihedral_deg, x);
     }
-    q.max_aspect_ratio = std::max(q.max_aspect_ratio, tet_aspect_ratio(a, b, c, d));
+    aspect[e] = tet_aspect_ratio(a, b, c, d);
+    q.max_aspect_ratio = std::max(q.max_aspect_ratio, aspect[e]);
     sj[e] = tet10_min_scaled_jacobian(mesh, e);
     q.min_scaled_jacobian = std::min(q.min_scaled_jacobian, sj[e]);
     q.total_volume += tet10_volume(mesh, e);
+  }
+  q.mean_edge = edge_sum / (6.0 * static_cast<double>(mesh.elements.size()));
+  {
+    // Nearest-rank percentiles: the element at rank ceil(0.05 n) from the bad end.
+    const std::size_t n = mesh.elements.size();
+    const std::size_t k = (n * 5 + 99) / 100 - 1;
+    std::nth_element(min_angle.begin(), min_angle.begin() + k, min_angle.end());
+    q.p05_min_dihedral_deg = min_angle[k];
+    std::nth_element(aspect.begin(), aspect.begin() + k, aspect.end(), std::greater<double>());
+    q.p95_aspect_ratio = aspect[k];
   }
   const double tiny = 1e-12 * sum_abs / static_cast<double>(mesh.elements.size());
   for (std::size_t e = 0; e < mesh.elements.size(); ++e) {
@@ -196,12 +213,14 @@ std::string format_mesh_quality(const MeshQuality& q) {
   char buf[768];
   std::snprintf(buf, sizeof buf,
                 "elements %lld, nodes %lld, volume %.6g\n"
-                "dihedral angles %.2f .. %.2f deg, worst aspect ratio %.3f (1 = regular)\n"
-                "edge lengths %.4g .. %.4g, corner-tet volumes %.4g .. %.4g\n"
+                "dihedral angles %.2f .. %.2f deg (5 %% of elements below %.2f), "
+                "worst aspect ratio %.3f (1 = regular; 5 %% above %.3f)\n"
+                "edge lengths %.4g .. %.4g (mean %.4g), corner-tet volumes %.4g .. %.4g\n"
                 "min scaled Jacobian %.4f",
                 static_cast<long long>(q.elements), static_cast<long long>(q.nodes), q.total_volume,
-                q.min_dihedral_deg, q.max_dihedral_deg, q.max_aspect_ratio, q.min_edge, q.max_edge,
-                q.min_volume, q.max_volume, q.min_scaled_jacobian);
+                q.min_dihedral_deg, q.max_dihedral_deg, q.p05_min_dihedral_deg, q.max_aspect_ratio,
+                q.p95_aspect_ratio, q.min_edge, q.max_edge, q.mean_edge, q.min_volume, q.max_volume,
+                q.min_scaled_jacobian);
   std::string s = buf;
   if (q.bad_elements > 0) {
     std::snprintf(buf, sizeof buf, "\n%lld inverted or degenerate element(s), first: %lld",

@@ -14,6 +14,7 @@
 
 #include "elements/tet_geometry.hpp"
 #include "engine/errors.hpp"
+#include "io/atomic_file.hpp"
 
 namespace femdem {
 
@@ -309,13 +310,6 @@ std::string read_file_text(const std::string& path) {
   return ss.str();
 }
 
-// Edge key of two node indices, order-independent.
-std::uint64_t edge_key(std::int32_t a, std::int32_t b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
-         static_cast<std::uint32_t>(b);
-}
-
 Tet10Mesh assemble(const Reader& r, RawMesh& raw, GmshReadInfo& info) {
   const std::string& path = r.path();
   if (!raw.have_nodes) r.fail_at("no $Nodes section", r.line_no() + 1);
@@ -365,9 +359,9 @@ Tet10Mesh assemble(const Reader& r, RawMesh& raw, GmshReadInfo& info) {
   if (mesh.nodes.size() + 6 * raw.tets.size() > static_cast<std::size_t>(INT32_MAX))
     r.fail_at("mesh too large", raw.elements_line);
 
-  // Elements in our node order; TET10 edges registered so TET4 promotion reuses them.
+  // Elements in our node order; TET4 elements get their mid-edge nodes below (shared with any
+  // TET10 element on the same edge).
   mesh.elements.resize(raw.tets.size());
-  std::unordered_map<std::uint64_t, std::int32_t> mid_of;
   for (std::size_t e = 0; e < raw.tets.size(); ++e) {
     const RawElement& t = raw.tets[e];
     Tet10& el = mesh.elements[e];
@@ -381,23 +375,7 @@ Tet10Mesh assemble(const Reader& r, RawMesh& raw, GmshReadInfo& info) {
     }
   }
   if (info.tet4 > 0) {
-    if (info.tet10 > 0) {
-      for (const Tet10& el : mesh.elements)
-        if (el[4] >= 0)
-          for (int k = 0; k < 6; ++k)
-            mid_of.emplace(edge_key(el[kTet10Edges[k][0]], el[kTet10Edges[k][1]]), el[4 + k]);
-    }
-    mid_of.reserve(static_cast<std::size_t>(info.tet4) * 2);
-    for (Tet10& el : mesh.elements) {
-      if (el[4] >= 0) continue;
-      for (int k = 0; k < 6; ++k) {
-        const std::int32_t a = el[kTet10Edges[k][0]], b = el[kTet10Edges[k][1]];
-        const auto [it, added] =
-            mid_of.emplace(edge_key(a, b), static_cast<std::int32_t>(mesh.nodes.size()));
-        if (added) mesh.nodes.push_back(0.5 * (mesh.nodes[a] + mesh.nodes[b]));
-        el[4 + k] = it->second;
-      }
-    }
+    add_mid_edge_nodes(mesh);
     info.notes.push_back(std::to_string(info.tet4) + " TET4 element(s) promoted to TET10");
   }
 
@@ -542,7 +520,7 @@ Tet10Mesh read_gmsh(const std::string& path, GmshReadInfo* info_out) {
   return mesh;
 }
 
-void write_gmsh(const Tet10Mesh& mesh, const std::string& path) {
+std::string gmsh_text(const Tet10Mesh& mesh) {
   std::string out;
   out.reserve(mesh.nodes.size() * 64 + mesh.elements.size() * 96 + 512);
   char buf[64];
@@ -586,11 +564,13 @@ void write_gmsh(const Tet10Mesh& mesh, const std::string& path) {
   }
   out += "$EndElements\n";
 
-  std::FILE* f = std::fopen(path.c_str(), "wb");
-  if (!f) throw std::runtime_error("cannot open " + path + " for writing");
-  const bool ok = std::fwrite(out.data(), 1, out.size(), f) == out.size();
-  const bool closed = std::fclose(f) == 0;
-  if (!ok || !closed) throw std::runtime_error("cannot write " + path);
+  return out;
+}
+
+void write_gmsh(const Tet10Mesh& mesh, const std::string& path) {
+  // Atomically, so that a killed `femdem mesh` or two sweep jobs filling the mesh cache at once
+  // never leave a half-written file under the final name.
+  write_file_atomically(path, gmsh_text(mesh));
 }
 
 }  // namespace femdem

@@ -38,6 +38,10 @@ struct GmshReadInfo {
 
 Tet10Mesh read_gmsh(const std::string& path, GmshReadInfo* info = nullptr);
 
+// The MSH 4.1 text of the mesh (what write_gmsh writes).
+std::string gmsh_text(const Tet10Mesh& mesh);
+
+// Writes the file atomically (a temporary file renamed over `path`, see io/atomic_file.hpp).
 // Throws std::runtime_error if the file cannot be written.
 void write_gmsh(const Tet10Mesh& mesh, const std::string& path);
 

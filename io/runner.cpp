@@ -224,6 +224,7 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
   }
   log.say("femdem " + std::string(FEMDEM_VERSION) + ": " +
           (m.title.empty() ? scene.stem : m.title));
+  for (const auto& note : scene.notes) log.say(note);
   {
     char buf[256];
     std::snprintf(buf, sizeof buf, "%d bodies, %d nodes, %d TET10 elements, %d walls; %d thread%s",

@@ -23,7 +23,9 @@
 
 #include "elements/tet_geometry.hpp"
 #include "engine/errors.hpp"
+#include "io/cad_mesh.hpp"
 #include "io/gmsh_io.hpp"
+#include "io/mesh_cache.hpp"
 #include "io/mesh_generators.hpp"
 #include "io/packing.hpp"
 
@@ -246,9 +248,6 @@ const std::vector<std::string> kAvailableModels = {
 const std::vector<std::string> kPlannedModels = {};
 const std::vector<std::string> kCones = {"outer", "inner", "plane_strain", "inscribed"};
 const std::vector<std::string> kGenerators = {"box", "cylinder", "sphere"};
-const std::vector<std::string> kCadExtensions = {".stl", ".obj",  ".ply", ".off", ".step",
-                                                 ".stp", ".iges", ".igs", ".3mf", ".dae",
-                                                 ".fbx", ".gltf", ".glb", ".brep"};
 
 // ---------------------------------------------------------------------------------------------
 // The reader: walks the (overridden) TOML tree, checks it, fills the ModelSpec and the resolved
@@ -336,6 +335,10 @@ class Reader {
   std::string scene_path_;
   fs::path base_dir_;
   std::map<const toml::node*, std::string> override_nodes_;  // nodes created by --set
+
+ public:
+  // What happened while reading that the user should see in the log (CAD meshing, cache).
+  mutable std::vector<std::string> notes_;
 };
 
 Reader::Location Reader::locate(const toml::node* node) const {
@@ -897,7 +900,8 @@ Tet10Mesh Reader::read_mesh(const toml::table& mesh, const std::string& bp,
   if (has_gen && has_file) fail(&mesh, p, "give either 'generator' or 'file', not both");
   if (!has_gen && !has_file)
     fail(&mesh, p,
-         "needs 'generator' (\"box\", \"cylinder\", \"sphere\") or 'file' (a gmsh .msh file)");
+         "needs 'generator' (\"box\", \"cylinder\", \"sphere\") or 'file' (a gmsh .msh file or a "
+         "CAD surface)");
 
   if (has_gen) {
     const std::string gen = string(mesh, "generator", p, &mesh);
@@ -1003,16 +1007,17 @@ Tet10Mesh Reader::read_mesh(const toml::table& mesh, const std::string& bp,
   if (file.empty()) fail(fn, fkey, "must not be empty");
   const fs::path full = fs::path(file).is_absolute() ? fs::path(file) : base_dir_ / file;
   const std::string ext = lower(fs::path(file).extension().string());
-  const bool is_cad =
-      std::find(kCadExtensions.begin(), kCadExtensions.end(), ext) != kCadExtensions.end();
+  const bool is_cad = ext != ".msh" && cad_format_supported(ext);
   if (ext == ".msh")
     check_keys(mesh, p, {"file"}, "for a gmsh .msh file (it is used as meshed)");
   else if (is_cad)
-    check_keys(mesh, p, {"file", "element_size"}, "for a CAD surface file");
+    check_keys(mesh, p, {"file", "element_size", "scale"}, "for a CAD surface file");
   else
     fail(fn, fkey,
          "unsupported mesh file type '" + (ext.empty() ? std::string("(none)") : ext) +
-             "': use a second-order tetrahedral gmsh volume mesh (.msh)");
+             "': use a second-order tetrahedral gmsh volume mesh (.msh) or a closed surface in "
+             "a format assimp reads (" +
+             cad_extensions() + ")");
   std::error_code ec;
   if (!fs::exists(full, ec))
     fail(fn, fkey,
@@ -1022,10 +1027,24 @@ Tet10Mesh Reader::read_mesh(const toml::table& mesh, const std::string& bp,
   if (!std::ifstream(full).good()) fail(fn, fkey, "cannot read mesh file '" + full.string() + "'");
   out.insert_or_assign("file", file);
   if (is_cad) {
-    if (mesh.contains("element_size")) positive(mesh, "element_size", p, std::nullopt, &mesh);
-    fail(fn, fkey,
-         "CAD import is not available yet in this version: mesh '" + file +
-             "' into a second-order tetrahedral gmsh .msh file and use mesh = { file = ... }");
+    CadMeshOptions options;
+    options.element_size = positive(mesh, "element_size", p, std::nullopt, &mesh);
+    options.scale = positive(mesh, "scale", p, 1.0, &mesh);
+    out.insert_or_assign("element_size", options.element_size);
+    out.insert_or_assign("scale", options.scale);
+    CachedCadMesh cm;
+    try {
+      cm = mesh_cad_file_cached(full.string(), options);
+    } catch (const InputError& e) {
+      // Size problems belong to element_size; everything else to the file.
+      const bool size = std::string(e.what()).find("element_size") != std::string::npos;
+      const char* key = size ? "element_size" : "file";
+      fail(size ? mesh.get(key) : fn, dotted(p, key), "cannot mesh the surface: " + e.describe());
+    } catch (const std::exception& e) {
+      fail(fn, fkey, "cannot mesh the surface '" + full.string() + "': " + e.what());
+    }
+    notes_.push_back(dotted(p, "file") + ": " + cm.note);
+    return std::move(cm.mesh);
   }
   Tet10Mesh m;
   try {
@@ -1928,6 +1947,7 @@ SceneFile load_scene(const std::string& path, const std::vector<std::string>& ov
   toml::table resolved;
   scene.model = reader.read(root, scene.stem, resolved);
   scene.resolved_toml = resolved_scene_text(resolved);
+  scene.notes = std::move(reader.notes_);
   return scene;
 }
 

@@ -11,11 +11,12 @@
 namespace femdem {
 
 struct SceneFile {
-  std::string path;           // as given on the command line
-  std::string stem;           // file name without folder and extension: "taylor_bar"
-  std::string directory;      // folder the scene's relative paths are resolved against
-  std::string resolved_toml;  // the scene with overrides applied and every default filled in
-  ModelSpec model;            // checked; meshes generated or read, rotated and placed
+  std::string path;                // as given on the command line
+  std::string stem;                // file name without folder and extension: "taylor_bar"
+  std::string directory;           // folder the scene's relative paths are resolved against
+  std::string resolved_toml;       // the scene with overrides applied and every default filled in
+  ModelSpec model;                 // checked; meshes generated or read, rotated and placed
+  std::vector<std::string> notes;  // for the log: how CAD meshes were made (cache hit or miss)
 };
 
 // overrides: "KEY=VALUE" strings (the command line's --set). KEY is dotted, with entries of

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The femdem command-line program: `femdem run|check|sweep SCENE ...`, `femdem pack FILE ...` (see
-// docs/SCENES.md and /work/shared/SCENE_FORMAT.md). Exit codes: 0 success, 2 bad input, 3 unstable,
-// 1 otherwise.
+// The femdem command-line program: `femdem run|check|sweep SCENE ...`, `femdem pack FILE ...`
+// and `femdem mesh SURFACE --size H` (see docs/SCENES.md and /work/shared/SCENE_FORMAT.md). Exit
+// codes: 0 success, 2 bad input, 3 unstable, 1 otherwise.
 #include <fmt/core.h>
 
 #include <CLI/CLI.hpp>
@@ -18,6 +18,8 @@
 #include "engine/errors.hpp"
 #include "femdem_version.hpp"
 #include "io/packing.hpp"
+#include "io/cad_mesh.hpp"
+#include "io/gmsh_io.hpp"
 #include "io/runner.hpp"
 #include "io/scene_reader.hpp"
 #include "io/strain_path.hpp"
@@ -438,6 +440,35 @@ int main(int argc, char** argv) {
                        "identity or random (default: identity for spheres, random otherwise)");
   pack_cmd->add_option("--friction", pp.friction, "Friction while settling (default 0.5)");
   pack_cmd->add_flag("--quiet", pack_quiet, "Print nothing but errors");
+  CLI::App* mesh = app.add_subcommand(
+      "mesh",
+      "Mesh a closed CAD surface (STL, OBJ, PLY, OFF, glTF, 3MF, ... anything assimp reads) "
+      "into TET10 elements and write a gmsh .msh file");
+  std::string mesh_input, mesh_output;
+  femdem::CadMeshOptions mesh_options;
+  bool no_perturb = false, no_exude = false;
+  mesh->add_option("input", mesh_input, "Surface file")->required();
+  mesh->add_option("--size", mesh_options.element_size,
+                   "Target edge length of the tetrahedra, in m (after --scale)")
+      ->required()
+      ->check(CLI::PositiveNumber);
+  mesh->add_option("--scale", mesh_options.scale,
+                   "Factor from the file's units to m, e.g. 0.001 for mm (default 1)")
+      ->check(CLI::PositiveNumber);
+  mesh->add_option("-o,--output", mesh_output, "Output .msh file (default: INPUT with .msh)");
+  mesh->add_option("--feature-angle", mesh_options.feature_angle,
+                   "Edges whose faces' normals differ by more than this (degrees) are kept "
+                   "sharp (default 60)")
+      ->check(CLI::Range(0.0, 180.0));
+  mesh->add_flag("--odt", mesh_options.odt,
+                 "ODT smoothing after refinement (better elements, 1.3-2.4x slower; may crash "
+                 "inside CGAL 5.5 on some coarse meshes)");
+  mesh->add_flag("--lloyd", mesh_options.lloyd, "Lloyd smoothing after refinement (slower)");
+  mesh->add_flag("--no-perturb", no_perturb, "Skip the sliver perturbation");
+  mesh->add_flag("--no-exude", no_exude, "Skip the sliver exudation");
+  bool no_repair = false;
+  mesh->add_flag("--no-repair", no_repair,
+                 "Report what would be repaired (orientation, degenerate triangles) as errors");
 
   try {
     app.parse(argc, argv);
@@ -451,12 +482,33 @@ int main(int argc, char** argv) {
       if (!pack_size.empty()) pp.size = femdem::Vec3(pack_size[0], pack_size[1], pack_size[2]);
       return pack(pp, pack_out, pack_quiet);
     }
+    if (mesh->parsed()) {
+      mesh_options.perturb = !no_perturb;
+      mesh_options.exude = !no_exude;
+      mesh_options.repair = !no_repair;
+      if (mesh_output.empty())
+        mesh_output = std::filesystem::path(mesh_input).replace_extension(".msh").string();
+      if (std::filesystem::path(mesh_output).extension() != ".msh")
+        throw femdem::InputError("the output must be a .msh file", mesh_output, 0, 0, "-o");
+      if (std::filesystem::weakly_canonical(mesh_output) ==
+          std::filesystem::weakly_canonical(mesh_input))
+        throw femdem::InputError("the output would overwrite the input", mesh_output, 0, 0, "-o");
+      femdem::CadMeshReport report;
+      const femdem::Tet10Mesh m = femdem::mesh_cad_file(mesh_input, mesh_options, &report);
+      femdem::write_gmsh(m, mesh_output);
+      fmt::print("{}\n", femdem::format_cad_report(report));
+      fmt::print("{}", indent(femdem::format_mesh_quality(femdem::mesh_quality(m)), ""));
+      fmt::print("wrote {}\n", mesh_output);
+      return kExitOk;
+    }
     if (check->parsed()) {
       const femdem::SceneFile scene = femdem::load_scene(scene_path, overrides);
       if (material_name.empty() != strain_path.empty())
         throw femdem::InputError("--material and --strain-path go together");
       if (!material_name.empty())
         return material_point(scene, material_name, strain_path, substeps);
+      for (const auto& note : scene.notes) fmt::print("{}\n", note);
+      if (!scene.notes.empty()) fmt::print("\n");
       print_summary(scene);
       return kExitOk;
     }
