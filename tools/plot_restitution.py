@@ -54,7 +54,8 @@ def read_reference(path=REFERENCE_CSV):
 THESIS, EXPERIMENTS = read_reference()
 LABELS = {
     "concrete_mc1": "MC case 1 (c 15 MPa, φ 30°)",
-    "concrete_mc2": "MC case 2 (c 45 MPa, φ 13°)",
+    "concrete_mc2": "MC case 2 (c 45 MPa, φ 10°)",
+    "concrete_mc2_phi13": "MC case 2 read as φ 13° (Table 5.3)",
     "concrete_mc3": "MC case 3 (c 70 MPa, φ 5°)",
     "concrete_mc4": "MC case 4 (c 100 MPa, φ 0°)",
     "concrete_pwdp": "piece-wise DP",
