@@ -31,6 +31,23 @@ ModelSpec block(double E = 1e9) {
   return s;
 }
 
+// The block with its base held and its top face driven along z at `speed`.
+ModelSpec driven_block(double speed) {
+  ModelSpec s = block();
+  ConstraintSpec base;
+  base.body = 0;
+  base.region.kind = RegionSpec::Kind::Plane;
+  base.fix = {true, true, true};
+  s.constraints.push_back(base);
+  ConstraintSpec top;
+  top.body = 0;
+  top.region.kind = RegionSpec::Kind::Plane;
+  top.region.plane_point = Vec3(0, 0, 0.1);
+  top.velocity = Vec3(0.0, 0.0, speed);
+  s.constraints.push_back(top);
+  return s;
+}
+
 }  // namespace
 
 // Free fall: the centre of mass follows z0 + v0 t - g t^2 / 2 and kinetic energy equals the
@@ -54,19 +71,7 @@ TEST(Loading, FreeFallUnderGravity) {
 // A prescribed velocity on the top face drives the block against its fixed base: the top moves
 // exactly as prescribed, and the work of the driving supports balances the stored energy.
 TEST(Loading, PrescribedVelocityWorkIsAccounted) {
-  ModelSpec s = block();
-  ConstraintSpec base;
-  base.body = 0;
-  base.region.kind = RegionSpec::Kind::Plane;
-  base.fix = {true, true, true};
-  s.constraints.push_back(base);
-  ConstraintSpec top;
-  top.body = 0;
-  top.region.kind = RegionSpec::Kind::Plane;
-  top.region.plane_point = Vec3(0, 0, 0.1);
-  top.velocity = Vec3(0.0, 0.0, -0.5);
-  s.constraints.push_back(top);
-  Simulation sim(build_model(s));
+  Simulation sim(build_model(driven_block(-0.5)));
   while (sim.time() < 2e-3) sim.step();
   const Model& m = sim.model();
   for (int n = 0; n < m.node_count; ++n) {
@@ -183,19 +188,8 @@ TEST(Loading, WallWithVelocityHistoryDoesAccountedWork) {
 // top face (base held) is in tension of about E times its strain, and the reported value is
 // the largest eigenvalue over all Gauss points, computed here independently with Eigen.
 TEST(Loading, LargestPrincipalStressOfAPulledBlock) {
-  ModelSpec s = block();
-  ConstraintSpec base;
-  base.body = 0;
-  base.region.kind = RegionSpec::Kind::Plane;
-  base.fix = {true, true, true};
-  s.constraints.push_back(base);
-  ConstraintSpec top;
-  top.body = 0;
-  top.region.kind = RegionSpec::Kind::Plane;
-  top.region.plane_point = Vec3(0, 0, 0.1);
-  top.velocity = Vec3(0.0, 0.0, 0.01);  // quasi-static: rho c v is 5 % of the final stress
-  s.constraints.push_back(top);
-  Simulation sim(build_model(s));
+  // quasi-static: rho c v is 5 % of the final stress
+  Simulation sim(build_model(driven_block(0.01)));
   while (sim.time() < 2e-3) sim.step();
   const Model& m = sim.model();
   double expected = -HUGE_VAL;

@@ -17,24 +17,13 @@ K + (4/3) G H / (3G + H).
 Prints the errors at first yield, at the peak, and the residual die-wall pressure after
 unloading; writes the figure if asked.
 """
-import csv
 import math
+import os
 import sys
 
 
-def read_history(path):
-    with open(path, newline="") as f:
-        text = f.read()
-    if not text.endswith("\n"):
-        text = text[: text.rfind("\n") + 1]
-    rows = list(csv.reader(text.splitlines()))
-    header, data = rows[0], rows[1:]
-    cols = {name: [] for name in header}
-    for row in data:
-        if len(row) == len(header):
-            for name, value in zip(header, row):
-                cols[name].append(float(value))
-    return cols
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from history_csv import read_history  # noqa: E402  (tools/history_csv.py)
 
 
 def analytic(strain, E, nu, sy, H):

@@ -30,7 +30,6 @@ Writes OUT_DIR/compression_curve.png and OUT_DIR/compression_band.png (or into -
 and prints the numbers; --json prints them as one JSON object instead.
 """
 import argparse
-import csv
 import json
 import math
 import os
@@ -38,6 +37,8 @@ import sys
 import tomllib
 
 import h5py
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import history_csv  # noqa: E402  (tools/history_csv.py)
 import matplotlib
 import numpy as np
 
@@ -54,14 +55,9 @@ def resolved_scene(out):
 
 
 def read_history(out):
-    with open(os.path.join(out, "history.csv")) as f:
-        lines = f.read().split("\n")
-    if lines and lines[-1] != "":
-        lines = lines[:-1]  # a killed run's last, cut line
-    rows = list(csv.reader([l for l in lines if l]))
-    head = rows[0]
-    data = np.array([[float(v) for v in r] for r in rows[1:] if len(r) == len(head)])
-    return {h: data[:, i] for i, h in enumerate(head)}
+    cols = history_csv.read_history(os.path.join(out, "history.csv"))
+    return {k: np.array(v) for k, v in cols.items()}
+
 
 
 def open_results(path):

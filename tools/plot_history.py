@@ -4,30 +4,17 @@
 
 usage: tools/plot_history.py OUT_DIR     (writes OUT_DIR/energy.png, com.png, forces.png)
 """
-import csv
 import os
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from history_csv import read_history  # noqa: E402  (tools/history_csv.py)
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 
-def read_history(path):
-    with open(path, newline="") as f:
-        text = f.read()
-    if not text.endswith("\n"):
-        text = text[: text.rfind("\n") + 1]  # a killed run's torn last line
-    rows = list(csv.reader(text.splitlines()))
-    header, data = rows[0], rows[1:]
-    cols = {name: [] for name in header}
-    for row in data:
-        if len(row) != len(header):
-            continue
-        for name, value in zip(header, row):
-            cols[name].append(float(value))
-    return cols
 
 
 def main():
