@@ -8,9 +8,12 @@
 //  - the energy balance closes (kinetic + elastic + plastic work + contact = initial kinetic);
 //  - plastic flow can only lower the tension: the Mohr-Coulomb run's peak largest principal
 //    stress is below the elastic run's;
-//  - with the least principal stress not tensile (true where an arm bends), Mohr-Coulomb
-//    (sigma1 - sigma3) + (sigma1 + sigma3) sin(phi) <= 2 c cos(phi) bounds the largest one by the
-//    uniaxial tensile strength 2 c cos(phi) / (1 + sin(phi)) (17.3 MPa for c 15 MPa, phi 30 deg).
+//  - Mohr-Coulomb without a tension cut-off, (sigma1 - sigma3) + (sigma1 + sigma3) sin(phi) <=
+//    2 c cos(phi), bounds the largest principal stress by its apex c cot(phi) (26.0 MPa for c 15
+//    MPa, phi 30 deg; Kirchhoff stress, and the Cauchy stress tau / J is smaller in tension). The
+//    uniaxial tensile strength 2 c cos(phi) / (1 + sin(phi)) = 17.3 MPa bounds it only where the
+//    least principal stress is not tensile, which the re-entrant corners where the arms meet the
+//    core do not satisfy: there the coarse unit reaches 25.9 MPa, near the apex.
 // The impact speed is raised from 2 m/s to 6 m/s here so that the coarse unit yields for sure.
 #include <gtest/gtest.h>
 
@@ -86,13 +89,13 @@ TEST(ArmourDrop, CoarseVCrossBalancesMomentumAndEnergyAndPlasticityLowersTheTens
   const double peak_mc = mc.summary["bodies"]["unit"]["max_principal_stress"].get<double>();
   const double eps_mc = mc.summary["bodies"]["unit"]["max_equivalent_plastic_strain"].get<double>();
   const double c = 15e6, phi = 30.0 * M_PI / 180.0;
-  const double ft = 2 * c * std::cos(phi) / (1 + std::sin(phi));
+  const double apex = c / std::tan(phi);
   std::printf(
-      "peak tension: elastic %.2f MPa, Mohr-Coulomb %.2f MPa (bound %.2f MPa), max eps_p %.3e\n",
-      peak_el / 1e6, peak_mc / 1e6, ft / 1e6, eps_mc);
+      "peak tension: elastic %.2f MPa, Mohr-Coulomb %.2f MPa (apex %.2f MPa), max eps_p %.3e\n",
+      peak_el / 1e6, peak_mc / 1e6, apex / 1e6, eps_mc);
   EXPECT_EQ(el.summary["bodies"]["unit"]["max_equivalent_plastic_strain"].get<double>(), 0.0);
   EXPECT_GT(eps_mc, 0.0);
   EXPECT_GT(mc.summary["energy"]["plastic_dissipation"].get<double>(), 0.0);
   EXPECT_LT(peak_mc, peak_el);
-  EXPECT_LT(peak_mc, ft * (1 + 1e-6));
+  EXPECT_LT(peak_mc, apex * (1 + 1e-6));
 }
