@@ -21,8 +21,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "support/history_csv.hpp"
 #include "support/run_command.hpp"
@@ -31,12 +33,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Run {
+struct DropRun {
   nlohmann::json summary;
   std::map<std::string, std::vector<double>> history;
 };
 
-Run run_drop(const std::string& material, const std::string& extra) {
+DropRun run_drop(const std::string& material, const std::string& extra) {
   const fs::path out = fs::path(FEMDEM_TEST_TMP) / "armour_drop" / material;
   fs::remove_all(out);
   // The mesh cache goes under the build tree, not the user's home.
@@ -46,7 +48,7 @@ Run run_drop(const std::string& material, const std::string& extra) {
       FEMDEM_SOURCE_DIR + "/scenes/armour_unit_drop.toml' --quiet --threads 1 --out '" +
       out.string() + "' --set bodies.unit.material=" + material + " " + extra);
   EXPECT_EQ(r.code, 0) << r.output;
-  Run run;
+  DropRun run;
   std::ifstream in(out / "summary.json");
   run.summary = nlohmann::json::parse(in);
   run.history = femdem::test::read_history(out / "history.csv");
@@ -61,10 +63,10 @@ TEST(ArmourDrop, CoarseVCrossBalancesMomentumAndEnergyAndPlasticityLowersTheTens
       "--set bodies.unit.mesh.element_size=0.6 --set simulation.end_time=4e-3 "
       "--set simulation.output_interval=2e-3 "
       "--set 'bodies.unit.velocity=[0,0,-6]'";
-  const Run el = run_drop("concrete_elastic", extra);
-  const Run mc = run_drop("concrete_mc", extra);
+  const DropRun el = run_drop("concrete_elastic", extra);
+  const DropRun mc = run_drop("concrete_mc", extra);
 
-  for (const Run* r : {&el, &mc}) {
+  for (const DropRun* r : {&el, &mc}) {
     const auto& s = r->summary;
     const auto& h = r->history;
     const auto& u = s["bodies"]["unit"];
