@@ -125,7 +125,7 @@ TEST(ContactTimeStep, StiffContactBoundKeepsTheRunStable) {
   ModelSpec spec = aligned_cubes(2.0, 100.0);
   // lateral offset: edges and corners meet too, not only flush faces
   for (Vec3& p : spec.bodies[1].mesh.nodes) p += Vec3(0.3e-3, 0.2e-3, 0.0);
-  const RunResult r = run(spec, 2.5e-6, 40000);
+  const RunResult r = run(spec, 1.5e-6, 40000);
   std::printf(
       "element step %.4g s, contact-limited %.4g s at t = 0, smallest %.4g s, %lld steps, "
       "energy balance %.2e, peak contact energy %.3g J\n",
