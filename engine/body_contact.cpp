@@ -61,8 +61,8 @@ TetSize tet_size(const contact::TetCorners& t) {
 // and dA n B are parts of the boundary of the convex A n B, whose area is at most that of
 // either tetrahedron. So k <= p (max|grad phi_A| + max|grad phi_B|) min(S_A, S_B). Two
 // regular tetrahedra with faces flush (the stiffest contact, 4 p S (1/h_A + 1/h_B)) reach a
-// quarter of it; the 2 N^2 / 2E of the contacts in the body-contact and Hertz tests stays
-// below it (same bits as without the bound), so it acts where the secant has lost its meaning.
+// quarter of it; the 2 N^2 / 2E of the contacts in test_body_contact stays below it (the
+// same numbers as without the bound), so it acts where the secant has lost its meaning.
 double pair_stiffness_bound(const contact::TetCorners& a, const contact::TetCorners& b,
                             double penalty) {
   const TetSize sa = tet_size(a), sb = tet_size(b);
