@@ -59,7 +59,6 @@ def read_history(out):
     return {k: np.array(v) for k, v in cols.items()}
 
 
-
 def open_results(path):
     try:
         return h5py.File(path, "r")

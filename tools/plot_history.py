@@ -15,8 +15,6 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 
-
-
 def main():
     if len(sys.argv) != 2:
         print(__doc__)
