@@ -163,7 +163,7 @@ void BodyContact::evaluate(const Model& m, Pair& p, double step_dt, PairResult& 
       a[c][k] = m.x[3 * ta[c] + k];
       b[c][k] = m.x[3 * tb[c] + k];
     }
-  r.energy = r.dissipated = r.stiffness = 0.0;
+  r.energy = r.dissipated = r.stiffness = r.penetration = 0.0;
   contact::TetPairContact out;
   r.touching = contact::tet_potential_contact(a, b, p.penalty, out);
   if (!r.touching || !(out.energy > 0.0)) {
@@ -194,6 +194,7 @@ void BodyContact::evaluate(const Model& m, Pair& p, double step_dt, PairResult& 
   // step covers it too; in a regular contact the cap does not act and k_t = N^2 / 2E.
   const double k_s = std::min(k_n, 0.5 * pair_stiffness_bound(a, b, p.penalty));
   r.stiffness = 2.0 * k_s;
+  if (N > 0.0) r.penetration = 2.0 * out.energy / N;
   if (p.friction <= 0.0 || !(N > 0.0)) return;
 
   const Vec3 n = fb / N;
@@ -232,7 +233,7 @@ void BodyContact::evaluate(const Model& m, Pair& p, double step_dt, PairResult& 
 }
 
 void BodyContact::compute(const Model& m, double step_dt, std::vector<double>& f) {
-  energy_ = dissipated_ = 0.0;
+  energy_ = dissipated_ = max_penetration_ = 0.0;
   touching_ = 0;
   if (!active_) return;
   for (std::size_t q = 0; q < nodes_.size(); ++q) {
@@ -253,6 +254,7 @@ void BodyContact::compute(const Model& m, double step_dt, std::vector<double>& f
     if (!r.touching) continue;
     ++touching_;
     energy_ += r.energy;
+    max_penetration_ = std::max(max_penetration_, r.penetration);
     const auto& ta = m.contact_tets[pairs_[q].i];
     const auto& tb = m.contact_tets[pairs_[q].j];
     for (int c = 0; c < 4; ++c)

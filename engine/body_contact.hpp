@@ -13,6 +13,10 @@
 // coordinates of c), so it is equal and opposite with no spurious moment. The spring slides at
 // mu N; the work of sliding is dissipated, the spring's energy is stored contact energy.
 //
+// Penetration. A pair's overlap depth is estimated as 2 E / N (exact for a flat overlap, see
+// above); the largest over the touching pairs is reported so that a user can see how far the
+// penalty lets the bodies sink into each other.
+//
 // Every pair is evaluated independently (OpenMP) into its own slot and the forces are summed
 // over pairs in their sorted order, so results do not depend on the thread count.
 #include <array>
@@ -39,6 +43,8 @@ class BodyContact {
 
   double energy() const { return energy_; }          // stored now (potential + springs)
   double dissipated() const { return dissipated_; }  // by friction in the last compute()
+  // Largest overlap depth 2 E / N over the pairs touching in the last compute() (0: none).
+  double max_penetration() const { return max_penetration_; }
   // Largest over nodes of (sum of the contact stiffness on the node) / (its mass): the stable
   // step bound adds it to the element frequency squared.
   double max_stiffness_over_mass() const { return max_k_over_m_; }
@@ -60,7 +66,7 @@ class BodyContact {
   };
   struct PairResult {
     double force[24];  // 4 corners of tet i, then 4 of tet j
-    double energy = 0.0, dissipated = 0.0, stiffness = 0.0;
+    double energy = 0.0, dissipated = 0.0, stiffness = 0.0, penetration = 0.0;
     bool touching = false;
   };
 
@@ -83,7 +89,7 @@ class BodyContact {
   // node's sub-tets are candidates, because a flat contact is that stiff from its first touch.
   std::vector<double> node_contact_stiffness_;
   double near_k_over_m_ = 0.0;  // largest over the nodes of candidate pairs
-  double energy_ = 0.0, dissipated_ = 0.0, max_k_over_m_ = 0.0;
+  double energy_ = 0.0, dissipated_ = 0.0, max_k_over_m_ = 0.0, max_penetration_ = 0.0;
   std::size_t touching_ = 0;
   std::int64_t broadphase_runs_ = 0;
   std::int64_t pair_evaluations_ = 0, touching_evaluations_ = 0;

@@ -36,6 +36,16 @@ struct SimulationSettings {
   // crushed elements (the foot of a Taylor bar) otherwise set the step of the whole model; the
   // added mass is reported and should stay a small fraction of the body's.
   double mass_scaling_time_step = 0.0;
+  // Deformation damping (0: off): every node of a free body is pulled towards the body's rigid
+  // motion (the velocity field of its linear and angular momentum) by -alpha m (v - v_rigid),
+  // so vibrations die out while the bodies' translation and spin are untouched (thesis 2.3.4:
+  // damping must not act on the rigid motion of the discrete elements). A mode of angular
+  // frequency omega gets the damping ratio alpha / (2 omega).
+  double deformation_damping = 0.0;  // alpha, 1/s
+  // Stop at rest (0: off): end the run once the kinetic energy has stayed below this fraction
+  // of its peak for rest_hold_time, so that a settling scene needs no guessed end_time.
+  double rest_kinetic_fraction = 0.0;
+  double rest_hold_time = 0.0;  // s; 0: one output interval
 };
 
 struct BodySpec {

@@ -314,6 +314,11 @@ void Simulation::compute_forces(double step_dt) {
   contact_energy_ = contact;
   contact_dissipation_ += friction_dissipated - damping_power * step_dt;
 
+  // 3c. deformation damping: part of the internal force (a viscous stress of the bodies), work
+  // counted with the bulk viscosity's
+  if (m.settings.deformation_damping > 0.0)
+    viscous_dissipation_ += damp_deformation(m.settings.deformation_damping) * step_dt;
+
   // 4. accelerations and reactions of constrained dofs
   const Vec3& g = m.settings.gravity;
 #pragma omp parallel for schedule(static) if (nn > kParallelMinNodes)
@@ -331,6 +336,46 @@ void Simulation::compute_forces(double step_dt) {
       }
     }
   }
+}
+
+double Simulation::damp_deformation(double alpha) {
+  Model& m = model_;
+  double power = 0.0;
+  for (const Body& b : m.bodies) {
+    if (b.fixed) continue;
+    const std::int32_t n0 = b.first_node, n1 = b.first_node + b.node_count;
+    // the rigid motion with the body's momentum and angular momentum (half-step velocities)
+    double mass = 0.0;
+    Vec3 c = Vec3::Zero(), p = Vec3::Zero();
+    for (std::int32_t n = n0; n < n1; ++n) {
+      const double mn = m.mass[n];
+      mass += mn;
+      c += mn * Vec3(m.x[3 * n], m.x[3 * n + 1], m.x[3 * n + 2]);
+      p += mn * Vec3(m.v[3 * n], m.v[3 * n + 1], m.v[3 * n + 2]);
+    }
+    if (!(mass > 0.0)) continue;
+    c /= mass;
+    const Vec3 vc = p / mass;
+    Vec3 L = Vec3::Zero();
+    Eigen::Matrix3d I = Eigen::Matrix3d::Zero();
+    for (std::int32_t n = n0; n < n1; ++n) {
+      const double mn = m.mass[n];
+      const Vec3 r = Vec3(m.x[3 * n], m.x[3 * n + 1], m.x[3 * n + 2]) - c;
+      L += mn * r.cross(Vec3(m.v[3 * n], m.v[3 * n + 1], m.v[3 * n + 2]) - vc);
+      I += mn * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
+    }
+    // a solid body's inertia is positive definite; LDLT also copes with a flat one
+    const Vec3 w = I.ldlt().solve(L);
+    for (std::int32_t n = n0; n < n1; ++n) {
+      const double mn = m.mass[n];
+      const Vec3 r = Vec3(m.x[3 * n], m.x[3 * n + 1], m.x[3 * n + 2]) - c;
+      const Vec3 dv = Vec3(m.v[3 * n], m.v[3 * n + 1], m.v[3 * n + 2]) - vc - w.cross(r);
+      for (int k = 0; k < 3; ++k) m.f_int[3 * n + k] += alpha * mn * dv[k];
+      // sum m dv . v_rigid = 0 by construction, so the power is -alpha sum m |dv|^2
+      power += alpha * mn * dv.squaredNorm();
+    }
+  }
+  return power;
 }
 
 std::string Simulation::advice() const {

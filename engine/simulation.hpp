@@ -98,6 +98,9 @@ class Simulation {
   // `element_dt_needed` (conserving nodal momentum once the run has started).
   void scale_masses(double element_dt_needed);
   std::string advice() const;  // what to change when the run diverges
+  // Adds the deformation damping force of every free body to f_int; returns its dissipation
+  // rate (W, >= 0).
+  double damp_deformation(double alpha);
   // Force-driven walls: acceleration from the prescribed load and the contact forces just
   // computed, then the second half kick of their velocity (step_dt 0: acceleration only).
   void update_force_driven_walls(double step_dt);

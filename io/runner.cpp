@@ -248,6 +248,8 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
   std::optional<CompactionMonitor> compaction;
   if (spec.compaction) compaction.emplace(sim, *spec.compaction);
   std::vector<std::string> columns = standard_history_columns(body_names, wall_names);
+  const bool body_contact = sim.body_contact().active();
+  if (body_contact) columns.push_back("contact.max_penetration");
   if (compaction)
     for (std::string& c : compaction_columns()) columns.push_back(std::move(c));
   HistoryWriter history(out / "history.csv", std::move(columns));
@@ -266,6 +268,11 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
   // the run's largest principal stress per body, and when, sampled with the history rows
   std::vector<double> peak_principal(m.bodies.size(), -HUGE_VAL),
       peak_principal_time(m.bodies.size(), 0.0);
+  // the deepest overlap between bodies over the run, sampled with the history rows
+  double peak_penetration = 0.0, peak_penetration_time = 0.0;
+  // stop at rest: the peak kinetic energy so far and since when it has been below the threshold
+  double peak_kinetic = 0.0, peak_kinetic_time = 0.0, below_since = -1.0, rest_time = -1.0;
+  const double rest_hold = set.rest_hold_time > 0.0 ? set.rest_hold_time : set.output_interval;
   auto write_history = [&]() {
     const Energies e = sim.energies();
     row.assign({sim.time(), sim.dt(), e.kinetic, e.internal, e.plastic_dissipation, e.contact,
@@ -284,6 +291,20 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
       const Vec3 f = sim.wall_force(static_cast<int>(w)),
                  p = sim.wall_position(static_cast<int>(w));
       row.insert(row.end(), {f.x(), f.y(), f.z(), p.x(), p.y(), p.z()});
+    }
+    if (body_contact) {
+      const double d = sim.body_contact().max_penetration();
+      if (d > peak_penetration) peak_penetration = d, peak_penetration_time = sim.time();
+      row.push_back(d);
+    }
+    if (set.rest_kinetic_fraction > 0.0) {
+      if (e.kinetic > peak_kinetic) peak_kinetic = e.kinetic, peak_kinetic_time = sim.time();
+      if (peak_kinetic > 0.0 && e.kinetic < set.rest_kinetic_fraction * peak_kinetic) {
+        if (below_since < 0.0) below_since = sim.time();
+        if (sim.time() - below_since >= rest_hold * (1.0 - 1e-9)) rest_time = sim.time();
+      } else {
+        below_since = -1.0;
+      }
     }
     if (compaction) {
       const auto t0 = std::chrono::steady_clock::now();
@@ -316,12 +337,21 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
     summary.extra["loop_time_s"] =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
     summary.extra["stable_time_step"] = sim.stable_dt();
+    if (set.rest_kinetic_fraction > 0.0) {
+      summary.extra["peak_kinetic_energy"] = peak_kinetic;
+      summary.extra["peak_kinetic_energy_time"] = peak_kinetic_time;
+      if (rest_time >= 0.0) summary.extra["at_rest_time"] = rest_time;
+    }
     if (sim.body_contact().active()) {
       summary.extra["broadphase_runs"] = static_cast<double>(sim.body_contact().broadphase_runs());
       summary.extra["contact_pair_evaluations"] =
           static_cast<double>(sim.body_contact().pair_evaluations());
       summary.extra["contact_touching_pair_evaluations"] =
           static_cast<double>(sim.body_contact().touching_evaluations());
+      summary.extra["contact_max_penetration"] = peak_penetration;
+      summary.extra["contact_max_penetration_time"] = peak_penetration_time;
+      summary.extra["contact_final_max_penetration"] = sim.body_contact().max_penetration();
+      summary.extra["contact_sub_tet_min_edge"] = m.contact_tet_min_edge;
     }
     summary.energy = {.kinetic = e.kinetic,
                       .internal = e.internal,
@@ -393,11 +423,11 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
         write_history();
         while (next_history <= sim.time() + eps) next_history += set.history_interval;
       }
-      if (sim.time() >= next_frame - eps || sim.time() >= end - eps) {
+      if (sim.time() >= next_frame - eps || sim.time() >= end - eps || rest_time >= 0.0) {
         write_frame();
         while (next_frame <= sim.time() + eps) next_frame += set.output_interval;
       }
-      if (g_stop_signal != 0) break;
+      if (g_stop_signal != 0 || rest_time >= 0.0) break;
       if ((sim.steps() & 15) == 0 && !options.quiet) {
         const auto now = std::chrono::steady_clock::now();
         const double since = std::chrono::duration<double>(now - last_report).count();
@@ -439,6 +469,22 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
   results.close(true);
   finish_summary(RunStatus::completed);
   char buf[300];
+  if (set.rest_kinetic_fraction > 0.0) {
+    if (rest_time >= 0.0)
+      std::snprintf(buf, sizeof buf,
+                    "at rest at t = %.4g s: the kinetic energy stayed below %.3g of its peak "
+                    "(%.4g J at t = %.4g s) for %.4g s",
+                    rest_time, set.rest_kinetic_fraction, peak_kinetic, peak_kinetic_time,
+                    rest_hold);
+    else
+      std::snprintf(buf, sizeof buf,
+                    "warning: not at rest by the end time: kinetic energy %.4g J, %.3g of its "
+                    "peak (%.4g J at t = %.4g s)",
+                    sim.energies().kinetic,
+                    peak_kinetic > 0.0 ? sim.energies().kinetic / peak_kinetic : 0.0,
+                    peak_kinetic, peak_kinetic_time);
+    log.say(buf);
+  }
   std::snprintf(buf, sizeof buf,
                 "done: %lld steps in %s (%.3g element updates/s); energy balance error %.3g %%",
                 static_cast<long long>(sim.steps()), format_duration(summary.wall_time_s).c_str(),

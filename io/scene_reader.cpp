@@ -626,7 +626,8 @@ void Reader::read_simulation(const toml::table& root, ModelSpec& spec, toml::tab
   check_keys(t, p,
              {"end_time", "time_step_safety", "time_step", "output_interval", "history_interval",
               "gravity", "threads", "bulk_viscosity_linear", "bulk_viscosity_quadratic",
-              "mass_scaling_time_step"});
+              "mass_scaling_time_step", "deformation_damping", "rest_kinetic_fraction",
+              "rest_hold_time"});
   SimulationSettings& s = spec.simulation;
   s.end_time = positive(t, "end_time", p, std::nullopt, &t);
   s.time_step_safety = positive(t, "time_step_safety", p, s.time_step_safety, &t);
@@ -660,6 +661,34 @@ void Reader::read_simulation(const toml::table& root, ModelSpec& spec, toml::tab
     fail(t.get("mass_scaling_time_step"), "simulation.mass_scaling_time_step",
          "works with the automatic step only: remove simulation.time_step (the step is then "
          "never below mass_scaling_time_step)");
+  if (const toml::node* dn = t.get("deformation_damping")) {
+    // { ratio = xi, frequency = f }: alpha = 2 xi omega makes the mode at f damped at xi
+    const toml::table& d = require_table(dn, "simulation.deformation_damping");
+    const std::string dp = "simulation.deformation_damping";
+    check_keys(d, dp, {"ratio", "frequency"});
+    const double ratio = number(d, "ratio", dp, std::nullopt, &d);
+    if (ratio < 0.0 || ratio > 1.0)
+      fail(d.get("ratio"), dotted(dp, "ratio"),
+           "must be a fraction of critical damping in [0, 1], got " + format_number(ratio));
+    const double frequency = positive(d, "frequency", dp, std::nullopt, &d);
+    s.deformation_damping = 4.0 * M_PI * frequency * ratio;
+    toml::table o;
+    o.insert_or_assign("ratio", ratio);
+    o.insert_or_assign("frequency", frequency);
+    out.insert_or_assign("deformation_damping", std::move(o));
+  }
+  s.rest_kinetic_fraction = number(t, "rest_kinetic_fraction", p, 0.0, &t);
+  if (s.rest_kinetic_fraction < 0.0 || s.rest_kinetic_fraction >= 1.0)
+    fail(t.get("rest_kinetic_fraction"), "simulation.rest_kinetic_fraction",
+         "must be 0 (off) or a fraction of the peak kinetic energy in (0, 1), got " +
+             format_number(s.rest_kinetic_fraction));
+  s.rest_hold_time = number(t, "rest_hold_time", p, 0.0, &t);
+  if (s.rest_hold_time < 0.0)
+    fail(t.get("rest_hold_time"), "simulation.rest_hold_time",
+         "must not be negative, got " + format_number(s.rest_hold_time));
+  if (t.get("rest_hold_time") && s.rest_kinetic_fraction == 0.0)
+    fail(t.get("rest_hold_time"), "simulation.rest_hold_time",
+         "needs simulation.rest_kinetic_fraction (the stop-at-rest threshold)");
   out.insert_or_assign("end_time", s.end_time);
   out.insert_or_assign("time_step_safety", s.time_step_safety);
   if (s.time_step > 0.0) out.insert_or_assign("time_step", s.time_step);
@@ -671,6 +700,11 @@ void Reader::read_simulation(const toml::table& root, ModelSpec& spec, toml::tab
   out.insert_or_assign("bulk_viscosity_quadratic", s.bulk_viscosity_quadratic);
   if (s.mass_scaling_time_step > 0.0)
     out.insert_or_assign("mass_scaling_time_step", s.mass_scaling_time_step);
+  if (s.rest_kinetic_fraction > 0.0) {
+    out.insert_or_assign("rest_kinetic_fraction", s.rest_kinetic_fraction);
+    out.insert_or_assign("rest_hold_time",
+                         s.rest_hold_time > 0.0 ? s.rest_hold_time : s.output_interval);
+  }
 }
 
 void Reader::read_materials(const toml::table& root, ModelSpec& spec, toml::array& out) const {

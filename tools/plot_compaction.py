@@ -6,6 +6,10 @@ Heckel plot ln(1/(1-D)) against pressure with the fit from summary.json.
 
 usage: tools/plot_compaction.py OUT_DIR
        (writes OUT_DIR/compaction_curve.png, force_displacement.png, heckel.png)
+       tools/plot_compaction.py --compare OUT_DIR OUT_DIR ... -o PNG [--labels A,B,...]
+       (one figure with the runs' compaction curves and Heckel plots, e.g. a friction sweep,
+       and a table of the relative density at given pressures, the peak density, the share of
+       the punch force the die wall carries and the Heckel fit)
 """
 import json
 import math
@@ -20,7 +24,86 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 
+def loading_part(h):
+    """Pressure (MPa) and relative density up to the peak pressure."""
+    P = [p / 1e6 for p in h["compaction.punch_pressure"]]
+    D = h["compaction.relative_density"]
+    peak = max(range(len(P)), key=lambda i: P[i]) if P else 0
+    return P[: peak + 1], D[: peak + 1], peak
+
+
+def density_at(P, D, p):
+    """D where the loading curve first reaches pressure p (MPa), or None."""
+    for i in range(1, len(P)):
+        if P[i - 1] < p <= P[i]:
+            w = (p - P[i - 1]) / (P[i] - P[i - 1])
+            return D[i - 1] + w * (D[i] - D[i - 1])
+    return None
+
+
+def compare(dirs, png, labels):
+    pressures = (25.0, 50.0, 100.0, 150.0)
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(12, 5))
+    print("run | " + " | ".join(f"D at {p:g} MPa" for p in pressures) +
+          " | peak P (MPa) | D at peak | die wall share of punch force at peak | "
+          "Heckel yield pressure (MPa), R² | wall time (min)")
+    for out, label in zip(dirs, labels):
+        h = read_history(os.path.join(out, "history.csv"))
+        summ = {}
+        try:
+            with open(os.path.join(out, "summary.json")) as f:
+                summ = json.load(f)
+        except (OSError, ValueError):
+            pass
+        P, D, peak = loading_part(h)
+        ax1.plot(P, D, lw=1.5, label=label)
+        hp = [p for p, d in zip(P, D) if 0.0 < d < 1.0]
+        hy = [math.log(1.0 / (1.0 - d)) for d in D if 0.0 < d < 1.0]
+        ax2.plot(hp, hy, lw=1.2, label=label)
+        share = (h["compaction.die_axial_force"][peak] / h["compaction.punch_force"][peak]
+                 if h["compaction.punch_force"][peak] else float("nan"))
+        fit = summ.get("compaction", {}).get("heckel", {})
+        heckel = (f"{fit['yield_pressure'] / 1e6:.1f}, {fit['r2']:.3f}"
+                  if fit.get("yield_pressure") else "-")
+        cells = [density_at(P, D, p) for p in pressures]
+        wall = summ.get("wall_time_s")
+        print(f"{label} | " + " | ".join(f"{c:.4f}" if c is not None else "-" for c in cells) +
+              f" | {P[peak]:.1f} | {D[peak]:.4f} | {share:.3f} | {heckel} | "
+              + (f"{wall / 60:.1f}" if wall else "-"))
+    ax1.set_xlabel("mean punch pressure [MPa]")
+    ax1.set_ylabel("relative density D")
+    ax1.set_title("Compaction curves (loading)")
+    ax1.grid(alpha=0.3)
+    ax1.legend()
+    ax2.set_xlabel("mean punch pressure P [MPa]")
+    ax2.set_ylabel("ln(1 / (1 − D))")
+    ax2.set_title("Heckel plots (loading)")
+    ax2.grid(alpha=0.3)
+    ax2.legend()
+    fig.tight_layout()
+    fig.savefig(png, dpi=120)
+    print(f"wrote {png}")
+    return 0
+
+
 def main():
+    if len(sys.argv) > 1 and sys.argv[1] == "--compare":
+        args = sys.argv[2:]
+        png, labels = None, None
+        dirs = []
+        i = 0
+        while i < len(args):
+            if args[i] == "-o" and i + 1 < len(args):
+                png, i = args[i + 1], i + 2
+            elif args[i] == "--labels" and i + 1 < len(args):
+                labels, i = args[i + 1].split(","), i + 2
+            else:
+                dirs.append(args[i])
+                i += 1
+        if not dirs or png is None or (labels is not None and len(labels) != len(dirs)):
+            print(__doc__)
+            return 2
+        return compare(dirs, png, labels or [os.path.basename(d.rstrip("/")) for d in dirs])
     if len(sys.argv) != 2:
         print(__doc__)
         return 2
