@@ -481,8 +481,8 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
                     "warning: not at rest by the end time: kinetic energy %.4g J, %.3g of its "
                     "peak (%.4g J at t = %.4g s)",
                     sim.energies().kinetic,
-                    peak_kinetic > 0.0 ? sim.energies().kinetic / peak_kinetic : 0.0,
-                    peak_kinetic, peak_kinetic_time);
+                    peak_kinetic > 0.0 ? sim.energies().kinetic / peak_kinetic : 0.0, peak_kinetic,
+                    peak_kinetic_time);
     log.say(buf);
   }
   std::snprintf(buf, sizeof buf,
