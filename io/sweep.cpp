@@ -609,6 +609,8 @@ int run_sweep(const SweepOptions& opt) {
       std::vector<std::string> args = {opt.femdem_exe, "run",       opt.scene_path, "--out",
                                        rd.string(),    "--threads", std::to_string(tpj),
                                        "--quiet"};
+      // a run of a compaction scene draws its own plots unless the sweep is told not to plot
+      if (!opt.plot) args.push_back("--no-plot");
       for (const auto& s : opt.overrides) args.insert(args.end(), {"--set", s});
       for (std::size_t a = 0; a < axes.size(); ++a)
         args.insert(args.end(), {"--set", axes[a].key + "=" + r.values[a]});
