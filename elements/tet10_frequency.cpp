@@ -8,14 +8,15 @@
 
 namespace femdem {
 
-double tet10_max_frequency(const double* dNdX, const double* w, double element_mass,
-                           double lambda, double G) {
+double tet10_max_frequency(const double* dNdX, const double* w, double element_mass, double lambda,
+                           double G) {
   Eigen::Matrix<double, 30, 30> K = Eigen::Matrix<double, 30, 30>::Zero();
   for (int g = 0; g < tet10::kGauss; ++g) {
     const double* d = dNdX + 30 * g;
     for (int a = 0; a < 10; ++a)
       for (int b = 0; b < 10; ++b) {
-        const double dot = d[3 * a] * d[3 * b] + d[3 * a + 1] * d[3 * b + 1] + d[3 * a + 2] * d[3 * b + 2];
+        const double dot =
+            d[3 * a] * d[3 * b] + d[3 * a + 1] * d[3 * b + 1] + d[3 * a + 2] * d[3 * b + 2];
         for (int i = 0; i < 3; ++i)
           for (int k = 0; k < 3; ++k) {
             double v = lambda * d[3 * a + i] * d[3 * b + k] + G * d[3 * a + k] * d[3 * b + i];

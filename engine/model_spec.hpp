@@ -36,6 +36,9 @@ struct SimulationSettings {
   // crushed elements (the foot of a Taylor bar) otherwise set the step of the whole model; the
   // added mass is reported and should stay a small fraction of the body's.
   double mass_scaling_time_step = 0.0;
+  // Mass scaling that has to add more than this fraction of a body's mass during the run is
+  // keeping a crushed element alive, not smoothing a few small ones: the run stops (exit 3).
+  double mass_scaling_limit = 0.1;
   // Deformation damping (0: off): every node of a free body is pulled towards the body's rigid
   // motion (the velocity field of its linear and angular momentum) by -alpha m (v - v_rigid),
   // so vibrations die out while the bodies' translation and spin are untouched (thesis 2.3.4:

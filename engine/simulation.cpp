@@ -395,6 +395,8 @@ std::string Simulation::advice() const {
 void Simulation::scale_masses(double element_dt_needed) {
   Model& m = model_;
   const bool conserve_momentum = steps_ > 0;
+  std::int32_t worst = -1;  // the element that needed the most mass this time
+  double worst_added = 0.0;
   for (std::int32_t e = 0; e < m.element_count; ++e) {
     double& s = elem_mass_scale_[e];
     const double dt_e = elem_dt_[e] * std::sqrt(s);  // the step bound scales with sqrt(mass)
@@ -406,6 +408,7 @@ void Simulation::scale_masses(double element_dt_needed) {
         (s_new - s) * m.materials[m.element_material[e]].density * (w[0] + w[1] + w[2] + w[3]);
     s = s_new;
     body_added_mass_[m.element_body[e]] += added;
+    if (added > worst_added) worst_added = added, worst = e;
     const Tet10& c = m.conn[e];
     for (int a = 0; a < 10; ++a) {
       const std::int32_t n = c[a];
@@ -425,6 +428,22 @@ void Simulation::scale_masses(double element_dt_needed) {
       m.mass[n] = m_new;
     }
   }
+  // At the start the mesh is what the user gave (the run log reports the added mass); later,
+  // a body gaining a large share of its mass has an element being crushed flat, whose nodes
+  // would carry a huge mass (and gravity on it) while the run still looks balanced.
+  if (!conserve_momentum || worst < 0) return;
+  const Body& b = m.bodies[m.element_body[worst]];
+  const double added = body_added_mass_[m.element_body[worst]];
+  if (added <= m.settings.mass_scaling_limit * b.mass) return;
+  std::ostringstream msg;
+  msg << "mass scaling has added " << added << " kg to body '" << b.name << "' ("
+      << 100.0 * added / b.mass << " % of its mass, more than simulation.mass_scaling_limit = "
+      << m.settings.mass_scaling_limit << ") at t = " << time_ << " s, step " << steps_
+      << ": element " << (worst - b.first_element) << " of the body is being crushed (its own "
+      << "stable step fell to " << elem_dt_[worst] << " s). The results would no longer be "
+      << "physical. Stiffen the contact (penalty_factor), lower the impact speed, refine the "
+      << "mesh, or raise simulation.mass_scaling_limit if this much added mass is acceptable.";
+  throw InstabilityError(msg.str());
 }
 
 void Simulation::set_time_step() {

@@ -236,8 +236,7 @@ struct ResultsWriter::Impl {
            precision + "\">\n";  // the Xdmf3 readers need the type on the slab too
       s += "            <DataItem Dimensions=\"3 " + std::string(vec ? "3" : "2") +
            "\" NumberType=\"UInt\" Precision=\"4\" Format=\"XML\">" + k +
-           (vec ? " 0 0 1 1 1 1 " : " 0 1 1 1 ") + rows +
-           (vec ? " " + c : "") + "</DataItem>\n";
+           (vec ? " 0 0 1 1 1 1 " : " 0 1 1 1 ") + rows + (vec ? " " + c : "") + "</DataItem>\n";
       s += "            <DataItem Dimensions=\"" + f + " " + rows + (vec ? " " + c : "") +
            "\" NumberType=\"Float\" Precision=\"" + precision +
            "\" Format=\"HDF\">results.h5:/frames/" + fd.name + "</DataItem>\n";

@@ -225,9 +225,8 @@ std::string resolved_scene_text(const toml::table& root) {
       write_toml_value(os, v);
       os << "\n";
     }
-  for (const char* section :
-       {"simulation", "materials", "bodies", "packings", "walls", "constraints", "contact",
-        "compaction"}) {
+  for (const char* section : {"simulation", "materials", "bodies", "packings", "walls",
+                              "constraints", "contact", "compaction"}) {
     const toml::node* n = root.get(section);
     if (!n) continue;
     if (const toml::table* t = n->as_table()) {
@@ -243,8 +242,8 @@ std::string resolved_scene_text(const toml::table& root) {
   return os.str();
 }
 
-const std::vector<std::string> kAvailableModels = {
-    "elastic", "von_mises", "drucker_prager", "mohr_coulomb", "piecewise_drucker_prager"};
+const std::vector<std::string> kAvailableModels = {"elastic", "von_mises", "drucker_prager",
+                                                   "mohr_coulomb", "piecewise_drucker_prager"};
 const std::vector<std::string> kPlannedModels = {};
 const std::vector<std::string> kCones = {"outer", "inner", "plane_strain", "inscribed"};
 const std::vector<std::string> kGenerators = {"box", "cylinder", "sphere"};
@@ -626,8 +625,8 @@ void Reader::read_simulation(const toml::table& root, ModelSpec& spec, toml::tab
   check_keys(t, p,
              {"end_time", "time_step_safety", "time_step", "output_interval", "history_interval",
               "gravity", "threads", "bulk_viscosity_linear", "bulk_viscosity_quadratic",
-              "mass_scaling_time_step", "deformation_damping", "rest_kinetic_fraction",
-              "rest_hold_time"});
+              "mass_scaling_time_step", "mass_scaling_limit", "deformation_damping",
+              "rest_kinetic_fraction", "rest_hold_time"});
   SimulationSettings& s = spec.simulation;
   s.end_time = positive(t, "end_time", p, std::nullopt, &t);
   s.time_step_safety = positive(t, "time_step_safety", p, s.time_step_safety, &t);
@@ -655,8 +654,7 @@ void Reader::read_simulation(const toml::table& root, ModelSpec& spec, toml::tab
   s.mass_scaling_time_step = number(t, "mass_scaling_time_step", p, 0.0, &t);
   if (s.mass_scaling_time_step < 0.0)
     fail(t.get("mass_scaling_time_step"), "simulation.mass_scaling_time_step",
-         "must be 0 (off) or a positive time step, got " +
-             format_number(s.mass_scaling_time_step));
+         "must be 0 (off) or a positive time step, got " + format_number(s.mass_scaling_time_step));
   if (s.mass_scaling_time_step > 0.0 && s.time_step > 0.0)
     fail(t.get("mass_scaling_time_step"), "simulation.mass_scaling_time_step",
          "works with the automatic step only: remove simulation.time_step (the step is then "
@@ -686,6 +684,10 @@ void Reader::read_simulation(const toml::table& root, ModelSpec& spec, toml::tab
   if (s.rest_hold_time < 0.0)
     fail(t.get("rest_hold_time"), "simulation.rest_hold_time",
          "must not be negative, got " + format_number(s.rest_hold_time));
+  s.mass_scaling_limit = positive(t, "mass_scaling_limit", p, s.mass_scaling_limit, &t);
+  if (t.get("mass_scaling_limit") && s.mass_scaling_time_step == 0.0)
+    fail(t.get("mass_scaling_limit"), "simulation.mass_scaling_limit",
+         "needs simulation.mass_scaling_time_step (mass scaling is off)");
   if (t.get("rest_hold_time") && s.rest_kinetic_fraction == 0.0)
     fail(t.get("rest_hold_time"), "simulation.rest_hold_time",
          "needs simulation.rest_kinetic_fraction (the stop-at-rest threshold)");
@@ -698,8 +700,10 @@ void Reader::read_simulation(const toml::table& root, ModelSpec& spec, toml::tab
   out.insert_or_assign("threads", s.threads);
   out.insert_or_assign("bulk_viscosity_linear", s.bulk_viscosity_linear);
   out.insert_or_assign("bulk_viscosity_quadratic", s.bulk_viscosity_quadratic);
-  if (s.mass_scaling_time_step > 0.0)
+  if (s.mass_scaling_time_step > 0.0) {
     out.insert_or_assign("mass_scaling_time_step", s.mass_scaling_time_step);
+    out.insert_or_assign("mass_scaling_limit", s.mass_scaling_limit);
+  }
   if (s.rest_kinetic_fraction > 0.0) {
     out.insert_or_assign("rest_kinetic_fraction", s.rest_kinetic_fraction);
     out.insert_or_assign("rest_hold_time",
@@ -740,9 +744,9 @@ void Reader::read_materials(const toml::table& root, ModelSpec& spec, toml::arra
     check_keys(t, p, keys, "for model '" + model + "'");
     MaterialParams m;
     m.name = entry_name(t, p, names, "material");
-    m.model = model == "von_mises"        ? MaterialModel::VonMises
-              : model == "mohr_coulomb"   ? MaterialModel::MohrCoulomb
-              : model == "drucker_prager" ? MaterialModel::DruckerPrager
+    m.model = model == "von_mises"                  ? MaterialModel::VonMises
+              : model == "mohr_coulomb"             ? MaterialModel::MohrCoulomb
+              : model == "drucker_prager"           ? MaterialModel::DruckerPrager
               : model == "piecewise_drucker_prager" ? MaterialModel::PiecewiseDruckerPrager
                                                     : MaterialModel::Elastic;
     m.density = positive(t, "density", p, std::nullopt, &t);
@@ -837,7 +841,8 @@ void Reader::read_frictional(const toml::table& t, const std::string& p, Materia
                              toml::table& o) const {
   m.cohesion = number(t, "cohesion", p, std::nullopt, &t);
   if (!(m.cohesion >= 0.0))
-    fail(t.get("cohesion"), dotted(p, "cohesion"), "must be >= 0, got " + format_number(m.cohesion));
+    fail(t.get("cohesion"), dotted(p, "cohesion"),
+         "must be >= 0, got " + format_number(m.cohesion));
   m.friction_angle = number(t, "friction_angle", p, std::nullopt, &t);
   if (!(m.friction_angle >= 0.0 && m.friction_angle < 90.0))
     fail(t.get("friction_angle"), dotted(p, "friction_angle"),
@@ -845,8 +850,8 @@ void Reader::read_frictional(const toml::table& t, const std::string& p, Materia
   m.dilatancy_angle = number(t, "dilatancy_angle", p, m.friction_angle, &t);
   if (!(m.dilatancy_angle >= 0.0 && m.dilatancy_angle <= m.friction_angle))
     fail(t.get("dilatancy_angle"), dotted(p, "dilatancy_angle"),
-         "must lie in [0, friction_angle = " + format_number(m.friction_angle) +
-             "] degrees, got " + format_number(m.dilatancy_angle));
+         "must lie in [0, friction_angle = " + format_number(m.friction_angle) + "] degrees, got " +
+             format_number(m.dilatancy_angle));
   if (m.friction_angle == 0.0 && m.cohesion == 0.0)
     fail(t.get("cohesion"), dotted(p, "cohesion"),
          "and friction_angle are both 0: the material has no strength");
@@ -868,8 +873,9 @@ void Reader::read_frictional(const toml::table& t, const std::string& p, Materia
     const std::string cone = opt_string(t, "cone", p).value_or("outer");
     if (std::find(kCones.begin(), kCones.end(), cone) == kCones.end())
       fail(t.get("cone"), dotted(p, "cone"),
-           "unknown cone '" + cone + "'" + did_you_mean(cone, kCones) + "; available: " +
-               join(kCones) + " (matched to Mohr-Coulomb in compression, tension, plane strain, "
+           "unknown cone '" + cone + "'" + did_you_mean(cone, kCones) +
+               "; available: " + join(kCones) +
+               " (matched to Mohr-Coulomb in compression, tension, plane strain, "
                "or inside the whole hexagon)");
     m.cone = cone == "inner"          ? DruckerPragerCone::Inner
              : cone == "plane_strain" ? DruckerPragerCone::PlaneStrain
@@ -1460,8 +1466,8 @@ void Reader::read_contact(const toml::table& root, ModelSpec& spec, toml::table&
              "must not be negative, got " + format_number(cp.friction));
       c.pairs.push_back(cp);
       toml::table o;
-      o.insert_or_assign("bodies", toml::array{spec.bodies[cp.body_a].name,
-                                               spec.bodies[cp.body_b].name});
+      o.insert_or_assign("bodies",
+                         toml::array{spec.bodies[cp.body_a].name, spec.bodies[cp.body_b].name});
       o.insert_or_assign("friction", cp.friction);
       pairs_out.push_back(std::move(o));
     }

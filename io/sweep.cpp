@@ -3,8 +3,8 @@
 
 #include <fcntl.h>
 #include <sched.h>
-#include <sys/prctl.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -134,23 +134,24 @@ std::optional<std::vector<std::string>> expand_range(const std::string& item,
     const auto args =
         split_top_level(item.substr(f.size(), item.size() - f.size() - 1), key, where);
     std::optional<Number> a, b, n;
-    if (args.size() == 3) a = parse_number(args[0]), b = parse_number(args[1]),
-                          n = parse_number(args[2]);
+    if (args.size() == 3)
+      a = parse_number(args[0]), b = parse_number(args[1]), n = parse_number(args[2]);
     if (!a || !b || !n)
       throw InputError(where + ": expected " + std::string(fn) + "(START,STOP,COUNT) with numbers",
                        {}, 0, 0, key);
     if (!n->integer || n->value < 1 || n->value > static_cast<double>(kMaxRangeValues))
-      throw InputError(where + ": COUNT must be an integer from 1 to " +
-                           std::to_string(kMaxRangeValues),
-                       {}, 0, 0, key);
+      throw InputError(
+          where + ": COUNT must be an integer from 1 to " + std::to_string(kMaxRangeValues), {}, 0,
+          0, key);
     const bool log = std::string(fn) == "logspace";
     if (log && (a->value <= 0.0 || b->value <= 0.0))
       throw InputError(where + ": logspace needs positive START and STOP", {}, 0, 0, key);
     const auto count = static_cast<std::size_t>(n->value);
     for (std::size_t i = 0; i < count; ++i) {
       const double t = count == 1 ? 0.0 : static_cast<double>(i) / static_cast<double>(count - 1);
-      const double v = log ? std::exp(std::log(a->value) + t * (std::log(b->value) - std::log(a->value)))
-                           : a->value + t * (b->value - a->value);
+      const double v =
+          log ? std::exp(std::log(a->value) + t * (std::log(b->value) - std::log(a->value)))
+              : a->value + t * (b->value - a->value);
       out.push_back(format_range_value(i + 1 == count && count > 1 ? b->value : v, false));
     }
     return out;
@@ -177,8 +178,8 @@ std::optional<std::vector<std::string>> expand_range(const std::string& item,
   const bool integer = nums[0].integer && nums[1].integer && nums[2].integer;
   const double count_f = std::floor((b - a) / step + 1e-9) + 1.0;
   if (count_f > static_cast<double>(kMaxRangeValues))
-    throw InputError(where + ": more than " + std::to_string(kMaxRangeValues) + " values", {}, 0,
-                     0, key);
+    throw InputError(where + ": more than " + std::to_string(kMaxRangeValues) + " values", {}, 0, 0,
+                     key);
   const auto count = static_cast<std::size_t>(count_f);
   for (std::size_t i = 0; i < count; ++i)
     out.push_back(format_range_value(a + static_cast<double>(i) * step, integer));
@@ -377,7 +378,9 @@ std::string csv_text(const std::vector<Axis>& axes, const std::vector<Run>& runs
 // Processes
 
 std::atomic<int> g_sweep_signal{0};
-extern "C" void on_sweep_signal(int sig) { g_sweep_signal = sig; }
+extern "C" void on_sweep_signal(int sig) {
+  g_sweep_signal = sig;
+}
 
 int available_cores() {
   cpu_set_t set;
@@ -436,8 +439,7 @@ std::string run_label(const std::vector<Axis>& axes, const Run& r) {
                                  const InputError& e) {
   std::string msg = e.describe();
   const std::string as_set = "--set " + key + "=" + value;
-  for (std::size_t p; (p = msg.find(as_set)) != std::string::npos;)
-    msg.replace(p, 5, "--vary");
+  for (std::size_t p; (p = msg.find(as_set)) != std::string::npos;) msg.replace(p, 5, "--vary");
   throw InputError("value '" + value + "': " + msg, {}, 0, 0, "--vary " + key);
 }
 
@@ -448,9 +450,9 @@ std::vector<std::string> split_value_list(const std::string& list, const std::st
   std::vector<std::string> values;
   for (const auto& item : items) {
     if (item.empty())
-      throw InputError("empty value in --vary " + key + "=" + list +
-                           " (values are separated by commas)",
-                       {}, 0, 0, key);
+      throw InputError(
+          "empty value in --vary " + key + "=" + list + " (values are separated by commas)", {}, 0,
+          0, key);
     if (auto range = expand_range(item, key))
       values.insert(values.end(), range->begin(), range->end());
     else
@@ -474,17 +476,19 @@ int run_sweep(const SweepOptions& opt) {
   };
 
   // --- the axes
-  if (opt.vary.empty()) throw InputError("give at least one --vary KEY=V1,V2,...", {}, 0, 0, "--vary");
+  if (opt.vary.empty())
+    throw InputError("give at least one --vary KEY=V1,V2,...", {}, 0, 0, "--vary");
   std::vector<Axis> axes;
   std::set<std::string> set_keys;
   for (const auto& s : opt.overrides)
-    if (const auto eq = s.find('='); eq != std::string::npos) set_keys.insert(trim(s.substr(0, eq)));
+    if (const auto eq = s.find('='); eq != std::string::npos)
+      set_keys.insert(trim(s.substr(0, eq)));
   for (const auto& v : opt.vary) {
     const auto eq = v.find('=');
     if (eq == std::string::npos || trim(v.substr(0, eq)).empty())
-      throw InputError("expected --vary KEY=V1,V2,..., e.g. simulation.end_time=1e-3,2e-3 (got '" +
-                           v + "')",
-                       {}, 0, 0, "--vary");
+      throw InputError(
+          "expected --vary KEY=V1,V2,..., e.g. simulation.end_time=1e-3,2e-3 (got '" + v + "')", {},
+          0, 0, "--vary");
     Axis a;
     a.key = trim(v.substr(0, eq));
     for (const auto& b : axes)
@@ -545,8 +549,8 @@ int run_sweep(const SweepOptions& opt) {
   }
 
   // --- the sweep folder; runs already completed with the same resolved scene are kept
-  const fs::path dir = opt.out_dir.empty() ? fs::path("out") / (base.stem + "_sweep")
-                                           : fs::path(opt.out_dir);
+  const fs::path dir =
+      opt.out_dir.empty() ? fs::path("out") / (base.stem + "_sweep") : fs::path(opt.out_dir);
   fs::create_directories(dir);
   std::size_t skipped = 0;
   for (auto& r : runs) {
@@ -567,11 +571,11 @@ int run_sweep(const SweepOptions& opt) {
   const int tpj = std::max(1, opt.threads_per_job);
   int jobs = opt.jobs > 0 ? opt.jobs : std::max(1, cores / tpj);
   const std::size_t to_run = total - skipped;
-  jobs = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(jobs),
-                                                std::max<std::size_t>(to_run, 1)));
+  jobs = static_cast<int>(
+      std::min<std::size_t>(static_cast<std::size_t>(jobs), std::max<std::size_t>(to_run, 1)));
   {
-    std::string s = std::to_string(total) + " run" + (total == 1 ? "" : "s") + " in " +
-                    dir.string() + "/";
+    std::string s =
+        std::to_string(total) + " run" + (total == 1 ? "" : "s") + " in " + dir.string() + "/";
     if (skipped)
       s += "; " + std::to_string(skipped) +
            " already completed with the same resolved scene, not rerun";
@@ -581,12 +585,12 @@ int run_sweep(const SweepOptions& opt) {
     say(s);
     if (skipped && !opt.quiet)
       for (const auto& r : runs)
-        if (r.outcome == Outcome::skipped)
-          say("  skipped (already completed): " + r.name);
+        if (r.outcome == Outcome::skipped) say("  skipped (already completed): " + r.name);
   }
 
   // --- run
-  struct sigaction sa {}, old_int{}, old_term{};
+  struct sigaction sa {
+  }, old_int{}, old_term{};
   sa.sa_handler = on_sweep_signal;
   sigemptyset(&sa.sa_mask);
   sa.sa_flags = 0;  // no SA_RESTART: waitpid returns on a signal
@@ -606,9 +610,8 @@ int run_sweep(const SweepOptions& opt) {
       }
       const fs::path rd = dir / r.name;
       fs::create_directories(rd);
-      std::vector<std::string> args = {opt.femdem_exe, "run",       opt.scene_path, "--out",
-                                       rd.string(),    "--threads", std::to_string(tpj),
-                                       "--quiet"};
+      std::vector<std::string> args = {opt.femdem_exe, "run",       opt.scene_path,      "--out",
+                                       rd.string(),    "--threads", std::to_string(tpj), "--quiet"};
       // a run of a compaction scene draws its own plots unless the sweep is told not to plot
       if (!opt.plot) args.push_back("--no-plot");
       for (const auto& s : opt.overrides) args.insert(args.end(), {"--set", s});
@@ -671,8 +674,8 @@ int run_sweep(const SweepOptions& opt) {
     write_csv();
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.1f s", now() - r.started);
-    std::string line = "[" + std::to_string(done) + "/" + std::to_string(total) + "] " +
-                       run_label(axes, r) + ": ";
+    std::string line =
+        "[" + std::to_string(done) + "/" + std::to_string(total) + "] " + run_label(axes, r) + ": ";
     if (r.outcome == Outcome::completed)
       line += std::string("completed in ") + buf;
     else if (r.outcome == Outcome::interrupted)

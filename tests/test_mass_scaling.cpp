@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "engine/errors.hpp"
 #include "engine/simulation.hpp"
 #include "support/kuhn_box.hpp"
 
@@ -90,4 +91,28 @@ TEST(MassScaling, RequestBelowTheNaturalStepChangesNothing) {
   EXPECT_EQ(plain.model().x, scaled.model().x);
   EXPECT_EQ(plain.model().v, scaled.model().v);
   EXPECT_EQ(plain.dt(), scaled.dt());
+}
+
+// Mass scaling that must add more than simulation.mass_scaling_limit of a body's mass during
+// the run stops it (exit 3 in the program) and names the body and the element, instead of
+// letting a crushed element's nodes carry an unphysical mass. Here the requested step is raised
+// ten-fold mid-run, which needs about 100 times the mass: the run must stop at the next step.
+TEST(MassScaling, StopsWhenItWouldAddMoreThanTheLimit) {
+  const double natural = Simulation(build_model(spinning_block())).dt();
+  ModelSpec s = spinning_block();
+  s.simulation.mass_scaling_time_step = 1.01 * natural;
+  Simulation sim(build_model(s));
+  for (int i = 0; i < 10; ++i) sim.step();  // within the limit: nothing happens
+  auto& settings = const_cast<Model&>(sim.model()).settings;
+  settings.mass_scaling_time_step = 10.0 * natural;
+  try {
+    sim.step();
+    sim.step();
+    FAIL() << "the run went on with far more than 10 % of the body's mass added";
+  } catch (const InstabilityError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("body 'block'"), std::string::npos) << what;
+    EXPECT_NE(what.find("element "), std::string::npos) << what;
+    EXPECT_NE(what.find("mass_scaling_limit"), std::string::npos) << what;
+  }
 }
