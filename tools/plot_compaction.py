@@ -41,10 +41,21 @@ def density_at(P, D, p):
     return None
 
 
+def pressure_at(P, D, d):
+    """Pressure (MPa) where the loading curve first reaches relative density d, or None."""
+    for i in range(1, len(D)):
+        if D[i - 1] < d <= D[i]:
+            w = (d - D[i - 1]) / (D[i] - D[i - 1])
+            return P[i - 1] + w * (P[i] - P[i - 1])
+    return None
+
+
 def compare(dirs, png, labels):
-    pressures = (25.0, 50.0, 100.0, 150.0)
+    pressures = (25.0, 50.0, 100.0)
+    densities = (0.6, 0.7, 0.8, 0.85)
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(12, 5))
-    print("run | " + " | ".join(f"D at {p:g} MPa" for p in pressures) +
+    print("run | " + " | ".join(f"P (MPa) at D {d:g}" for d in densities) + " | " +
+          " | ".join(f"D at {p:g} MPa" for p in pressures) +
           " | peak P (MPa) | D at peak | die wall share of punch force at peak | "
           "Heckel yield pressure (MPa), R² | wall time (min)")
     for out, label in zip(dirs, labels):
@@ -66,8 +77,10 @@ def compare(dirs, png, labels):
         heckel = (f"{fit['yield_pressure'] / 1e6:.1f}, {fit['r2']:.3f}"
                   if fit.get("yield_pressure") else "-")
         cells = [density_at(P, D, p) for p in pressures]
+        at_d = [pressure_at(P, D, d) for d in densities]
         wall = summ.get("wall_time_s")
-        print(f"{label} | " + " | ".join(f"{c:.4f}" if c is not None else "-" for c in cells) +
+        print(f"{label} | " + " | ".join(f"{c:.1f}" if c is not None else "-" for c in at_d) +
+              " | " + " | ".join(f"{c:.4f}" if c is not None else "-" for c in cells) +
               f" | {P[peak]:.1f} | {D[peak]:.4f} | {share:.3f} | {heckel} | "
               + (f"{wall / 60:.1f}" if wall else "-"))
     ax1.set_xlabel("mean punch pressure [MPa]")
