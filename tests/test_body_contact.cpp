@@ -12,25 +12,14 @@
 
 #include "engine/simulation.hpp"
 #include "support/kuhn_box.hpp"
+#include "support/rubbery_blocks.hpp"
 
 using namespace femdem;
+using femdem::test::box_at;
+using femdem::test::momentum;
+using femdem::test::rubbery;
 
 namespace {
-
-MaterialParams rubbery() {
-  MaterialParams mat;
-  mat.name = "rubbery";
-  mat.density = 1000.0;
-  mat.youngs_modulus = 1e8;
-  mat.poisson_ratio = 0.3;
-  return mat;
-}
-
-Tet10Mesh box_at(Vec3 size, Vec3 origin, int n = 2) {
-  Tet10Mesh m = test::kuhn_box(n, n, n, size);
-  for (Vec3& p : m.nodes) p += origin;
-  return m;
-}
 
 // Two 0.1 m blocks 1 mm apart, closing at 2 m/s, offset sideways so that the impact is not
 // symmetric (edges and faces meet).
@@ -51,13 +40,6 @@ ModelSpec two_blocks() {
   // a softer penalty than the default 100 E keeps the step (and the test) 3x longer
   s.contact.penalty_factor = 10.0;
   return s;
-}
-
-Vec3 momentum(const Model& m) {
-  Vec3 p = Vec3::Zero();
-  for (std::int32_t n = 0; n < m.node_count; ++n)
-    p += m.mass[n] * Vec3(m.v[3 * n], m.v[3 * n + 1], m.v[3 * n + 2]);
-  return p;
 }
 
 }  // namespace

@@ -16,26 +16,15 @@
 #include "engine/simulation.hpp"
 #include "support/history_csv.hpp"
 #include "support/kuhn_box.hpp"
+#include "support/rubbery_blocks.hpp"
 #include "support/run_command.hpp"
 
 using namespace femdem;
+using femdem::test::box_at;
+using femdem::test::momentum;
+using femdem::test::rubbery;
 
 namespace {
-
-MaterialParams rubbery() {
-  MaterialParams mat;
-  mat.name = "rubbery";
-  mat.density = 1000.0;
-  mat.youngs_modulus = 1e8;
-  mat.poisson_ratio = 0.3;
-  return mat;
-}
-
-Tet10Mesh box_at(Vec3 size, Vec3 origin, int n = 2) {
-  Tet10Mesh m = test::kuhn_box(n, n, n, size);
-  for (Vec3& p : m.nodes) p += origin;
-  return m;
-}
 
 // Two 0.1 m blocks, b above a, with a gap (negative: an overlap) between them, closing at
 // 2 m/s; b is shifted sideways by `offset`.
@@ -54,13 +43,6 @@ ModelSpec two_blocks(double gap, double speed, Vec3 offset = Vec3(0.03, 0.02, 0.
   s.bodies = {a, b};
   s.contact.penalty_factor = 10.0;
   return s;
-}
-
-Vec3 momentum(const Model& m) {
-  Vec3 p = Vec3::Zero();
-  for (std::int32_t n = 0; n < m.node_count; ++n)
-    p += m.mass[n] * Vec3(m.v[3 * n], m.v[3 * n + 1], m.v[3 * n + 2]);
-  return p;
 }
 
 Vec3 angular_momentum(const Model& m, const Vec3& c) {
