@@ -33,12 +33,16 @@ namespace femdem {
 
 namespace fs = std::filesystem;
 
-void place_mesh(Tet10Mesh& mesh, const Vec3& rotation_degrees, const Vec3& position) {
+Eigen::Matrix3d rotation_from_degrees(const Vec3& rotation_degrees) {
   const double k = std::numbers::pi / 180.0;
-  const Eigen::Matrix3d r = (Eigen::AngleAxisd(k * rotation_degrees.z(), Vec3::UnitZ()) *
-                             Eigen::AngleAxisd(k * rotation_degrees.y(), Vec3::UnitY()) *
-                             Eigen::AngleAxisd(k * rotation_degrees.x(), Vec3::UnitX()))
-                                .toRotationMatrix();
+  return (Eigen::AngleAxisd(k * rotation_degrees.z(), Vec3::UnitZ()) *
+          Eigen::AngleAxisd(k * rotation_degrees.y(), Vec3::UnitY()) *
+          Eigen::AngleAxisd(k * rotation_degrees.x(), Vec3::UnitX()))
+      .toRotationMatrix();
+}
+
+void place_mesh(Tet10Mesh& mesh, const Vec3& rotation_degrees, const Vec3& position) {
+  const Eigen::Matrix3d r = rotation_from_degrees(rotation_degrees);
   for (Vec3& p : mesh.nodes) p = r * p + position;
 }
 
@@ -1720,9 +1724,9 @@ void Reader::read_packings(const toml::table& root, ModelSpec& spec, toml::array
     const toml::table& t = *tp;
     // An unnamed packing is "p" (its bodies p0001, ...), and its keys are named so.
     const std::string p = t.contains("name") ? entry_prefix : std::string("packings.p");
-    check_keys(
-        t, p,
-        {"name", "material", "mesh", "file", "generate", "cache", "position", "velocity", "fbar"});
+    check_keys(t, p,
+               {"name", "material", "mesh", "file", "generate", "cache", "position", "rotation",
+                "velocity", "fbar"});
     const std::string prefix = entry_name(t, p, packing_names, "packing", std::string("p"));
     toml::table o;
     o.insert_or_assign("name", prefix);
@@ -1742,6 +1746,10 @@ void Reader::read_packings(const toml::table& root, ModelSpec& spec, toml::array
                                   : "; materials: " + join(mat_names)));
     o.insert_or_assign("material", mat);
     const Vec3 position = opt_vec3(t, "position", p).value_or(Vec3::Zero());
+    // The whole packing, container and all, is turned about the container's origin: a layer
+    // settled in a box lies on a slope (gravity in the generator is along the box's -z).
+    const Vec3 rotation = opt_vec3(t, "rotation", p).value_or(Vec3::Zero());
+    const Eigen::Matrix3d packing_rotation = rotation_from_degrees(rotation);
     const Vec3 velocity = opt_vec3(t, "velocity", p).value_or(Vec3::Zero());
     std::optional<FbarMode> fbar;
     if (const toml::node* fb = t.get("fbar")) {
@@ -1900,20 +1908,22 @@ void Reader::read_packings(const toml::table& root, ModelSpec& spec, toml::array
       b.material = material;
       b.velocity = velocity;
       b.fbar = fbar;
-      const Eigen::Matrix3d rot = q.orientation.toRotationMatrix();
+      const Eigen::Matrix3d rot = packing_rotation * q.orientation.toRotationMatrix();
+      const Vec3 centre = packing_rotation * q.centre + position;
       if (element_size > 0.0) {
         auto it = by_radius.find(q.radius);
         if (it == by_radius.end())
           it = by_radius.emplace(q.radius, generate_sphere(q.radius, element_size)).first;
         b.mesh = it->second;
-        for (Vec3& x : b.mesh.nodes) x = rot * x + q.centre + position;
+        for (Vec3& x : b.mesh.nodes) x = rot * x + centre;
       } else {
         b.mesh = reference;
-        for (Vec3& x : b.mesh.nodes) x = rot * (q.radius * x) + q.centre + position;
+        for (Vec3& x : b.mesh.nodes) x = rot * (q.radius * x) + centre;
       }
       spec.bodies.push_back(std::move(b));
     }
     o.insert_or_assign("position", toml::array{position.x(), position.y(), position.z()});
+    o.insert_or_assign("rotation", toml::array{rotation.x(), rotation.y(), rotation.z()});
     o.insert_or_assign("velocity", toml::array{velocity.x(), velocity.y(), velocity.z()});
     o.insert_or_assign("fbar",
                        to_string(fbar.value_or(default_fbar_mode(spec.materials[material]))));

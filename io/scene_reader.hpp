@@ -25,6 +25,9 @@ struct SceneFile {
 // Throws InputError.
 SceneFile load_scene(const std::string& path, const std::vector<std::string>& overrides = {});
 
+// The rotation of `rotation = [rx, ry, rz]` (degrees) in scenes: Rz(rz) Ry(ry) Rx(rx).
+Eigen::Matrix3d rotation_from_degrees(const Vec3& rotation_degrees);
+
 // Mesh placement used by the reader: p' = Rz(rz) Ry(ry) Rx(rx) p + position, i.e. the mesh is
 // turned about the fixed x axis first, then y, then z (angles in degrees, right-handed), about
 // its own origin, and then translated.

@@ -37,6 +37,7 @@
 #include <concepts>
 
 #include "materials/hencky.hpp"
+#include "materials/log_strain_series.hpp"
 #include "materials/symmetric_eigen3.hpp"
 
 namespace femdem {
@@ -129,6 +130,25 @@ inline FiniteStrainResult finite_strain_update(const double F[3][3], GaussPointS
                                                const Model& model, double dt) {
   double b[6];
   detail::push_forward_sym(F, s.Cp_inv, b);
+  if constexpr (std::same_as<Model, ElasticModel>) {
+    // Hencky elasticity is linear in the strain tensor itself: with the strain from the series
+    // (materials/log_strain_series.hpp) no principal frame is needed.
+    double e[6];
+    if (log_strain_by_series(b, e)) {
+      const double tr = e[0] + e[1] + e[2];
+      FiniteStrainResult r;
+      double ee = 0.0;
+      for (int i = 0; i < 6; ++i) {
+        r.tau[i] = 2.0 * model.G * e[i];
+        ee += (i < 3 ? 1.0 : 2.0) * e[i] * e[i];
+      }
+      for (int i = 0; i < 3; ++i) r.tau[i] += model.lambda * tr;
+      r.energy = 0.5 * model.lambda * tr * tr + model.G * ee;
+      r.dissipation = 0.0;
+      r.yielded = false;
+      return r;
+    }
+  }
   const SymEig3 eig = symmetric_eigen3(b);
   double e_trial[3];
   for (int i = 0; i < 3; ++i) e_trial[i] = 0.5 * std::log(eig.value[i]);

@@ -26,33 +26,23 @@
 #include <string>
 #include <vector>
 
-#include "support/history_csv.hpp"
-#include "support/run_command.hpp"
+#include "support/scene_run.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct DropRun {
-  nlohmann::json summary;
-  std::map<std::string, std::vector<double>> history;
-};
+using DropRun = femdem::test::SceneRun;
 
 DropRun run_drop(const std::string& material, const std::string& extra) {
-  const fs::path out = fs::path(FEMDEM_TEST_TMP) / "armour_drop" / material;
-  fs::remove_all(out);
   // The mesh cache goes under the build tree, not the user's home.
   const std::string cache = (fs::path(FEMDEM_TEST_TMP) / "armour_drop" / "mesh_cache").string();
-  const auto r = femdem::test::run_command(
-      "FEMDEM_MESH_CACHE='" + cache + "' '" + std::string(FEMDEM_EXE) + "' run '" +
-      FEMDEM_SOURCE_DIR + "/scenes/armour_unit_drop.toml' --quiet --threads 1 --out '" +
-      out.string() + "' --set bodies.unit.material=" + material + " " + extra);
-  EXPECT_EQ(r.code, 0) << r.output;
-  DropRun run;
-  std::ifstream in(out / "summary.json");
-  run.summary = nlohmann::json::parse(in);
-  run.history = femdem::test::read_history(out / "history.csv");
-  return run;
+  DropRun r = femdem::test::run_shipped_scene(
+      "armour_unit_drop.toml", "armour_drop/" + material,
+      "--threads 1 --set bodies.unit.material=" + material + " " + extra,
+      "FEMDEM_MESH_CACHE='" + cache + "'");
+  EXPECT_EQ(r.command.code, 0) << r.command.output;
+  return r;
 }
 
 }  // namespace

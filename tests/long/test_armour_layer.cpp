@@ -14,26 +14,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
-#include <nlohmann/json.hpp>
-#include <string>
 
-#include "support/run_command.hpp"
-
-namespace fs = std::filesystem;
+#include "support/scene_run.hpp"
 
 TEST(ArmourLayer, ThirtyTetrapodsComeToRestOnTheSlope) {
-  const fs::path out = fs::path(FEMDEM_TEST_TMP) / "long" / "armour_layer";
-  fs::remove_all(out);
-  const auto r =
-      femdem::test::run_command(std::string("'") + FEMDEM_EXE + "' run '" + FEMDEM_SOURCE_DIR +
-                                "/scenes/armour_layer.toml' --quiet --threads 2 "
-                                "--out '" +
-                                out.string() + "'");
-  ASSERT_EQ(r.code, 0) << r.output;
-  std::ifstream in(out / "summary.json");
-  const auto s = nlohmann::json::parse(in);
+  const auto run =
+      femdem::test::run_shipped_scene("armour_layer.toml", "long/armour_layer", "--threads 2");
+  ASSERT_EQ(run.command.code, 0) << run.command.output;
+  const auto& s = run.summary;
   const auto& extra = s["extra"];
   ASSERT_TRUE(extra.contains("at_rest_time")) << "not at rest by the end time: " << s.dump(1);
   const double peak = extra["peak_kinetic_energy"].get<double>();

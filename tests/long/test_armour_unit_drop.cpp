@@ -23,27 +23,18 @@
 
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
-#include <nlohmann/json.hpp>
 #include <string>
 
-#include "support/run_command.hpp"
-
-namespace fs = std::filesystem;
+#include "support/scene_run.hpp"
 
 namespace {
 
 nlohmann::json run(const std::string& material) {
-  const fs::path out = fs::path(FEMDEM_TEST_TMP) / "long" / ("armour_unit_drop_" + material);
-  fs::remove_all(out);
   const auto r =
-      femdem::test::run_command(std::string("'") + FEMDEM_EXE + "' run '" + FEMDEM_SOURCE_DIR +
-                                "/scenes/armour_unit_drop.toml' --quiet --threads 2 --out '" +
-                                out.string() + "' --set bodies.unit.material=" + material);
-  EXPECT_EQ(r.code, 0) << r.output;
-  std::ifstream in(out / "summary.json");
-  return nlohmann::json::parse(in);
+      femdem::test::run_shipped_scene("armour_unit_drop.toml", "long/armour_unit_drop_" + material,
+                                      "--threads 2 --set bodies.unit.material=" + material);
+  EXPECT_EQ(r.command.code, 0) << r.command.output;
+  return r.summary;
 }
 
 }  // namespace

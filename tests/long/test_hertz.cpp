@@ -7,23 +7,16 @@
 // momentum conserved to round-off and equal and opposite rebound.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <map>
-#include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
-#include "support/history_csv.hpp"
-#include "support/run_command.hpp"
+#include "support/scene_run.hpp"
 
 namespace {
-
-namespace fs = std::filesystem;
-
-using femdem::test::read_history;
 
 struct Impact {
   double contact_time = 0.0, peak_force = 0.0;
@@ -32,16 +25,11 @@ struct Impact {
 };
 
 Impact run(const std::string& scene, const std::string& body) {
-  const fs::path out = fs::path(FEMDEM_TEST_TMP) / "long" / scene;
-  fs::remove_all(out);
-  const auto r = femdem::test::run_command(
-      std::string("'") + FEMDEM_EXE + "' run '" + FEMDEM_SOURCE_DIR + "/scenes/" + scene +
-      ".toml' --out '" + out.string() + "' --threads 2 --quiet");
-  EXPECT_EQ(r.code, 0) << r.output;
+  auto r = femdem::test::run_shipped_scene(scene + ".toml", "long/" + scene, "--threads 2");
+  EXPECT_EQ(r.command.code, 0) << r.command.output;
   Impact im;
-  std::ifstream sf(out / "summary.json");
-  im.summary = nlohmann::json::parse(sf);
-  im.history = read_history(out / "history.csv");
+  im.summary = std::move(r.summary);
+  im.history = std::move(r.history);
   const auto& t = im.history["time"];
   const auto& f = im.history[body + ".contact_force_z"];
   double first = -1.0, last = -1.0;

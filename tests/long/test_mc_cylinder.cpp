@@ -19,18 +19,15 @@
 
 #include "support/compression.hpp"
 #include "support/run_command.hpp"
+#include "support/scene_run.hpp"
 
 namespace fs = std::filesystem;
 
 TEST(McCylinder, PeakAndShearBandOfTheFullScene) {
-  const fs::path out = fs::path(FEMDEM_TEST_TMP) / "long" / "mc_cylinder_compression";
-  fs::remove_all(out);
-  const auto r =
-      femdem::test::run_command(std::string("'") + FEMDEM_EXE + "' run '" + FEMDEM_SOURCE_DIR +
-                                "/scenes/mc_cylinder_compression.toml' --quiet "
-                                "--threads 2 --out '" +
-                                out.string() + "'");
-  ASSERT_EQ(r.code, 0) << r.output;
+  const auto r = femdem::test::run_shipped_scene("mc_cylinder_compression.toml",
+                                                 "long/mc_cylinder_compression", "--threads 2");
+  ASSERT_EQ(r.command.code, 0) << r.command.output;
+  const fs::path& out = r.out;
   const auto run = femdem::test::read_compression_run(out);
   EXPECT_EQ(run.model, "mohr_coulomb");
   const double peak = femdem::test::peak_stress(run);

@@ -18,31 +18,22 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
-#include "support/history_csv.hpp"
-#include "support/run_command.hpp"
-
-namespace fs = std::filesystem;
+#include "support/scene_run.hpp"
 
 namespace {
 
 using History = std::map<std::string, std::vector<double>>;
 
 History run_scene(const std::string& scene, const std::string& name, const std::string& sets) {
-  const fs::path out = fs::path(FEMDEM_TEST_TMP) / "long" / name;
-  fs::remove_all(out);
-  const auto r = femdem::test::run_command(
-      std::string("'") + FEMDEM_EXE + "' run '" + FEMDEM_SOURCE_DIR + "/scenes/" + scene +
-      "' --quiet --no-plot --threads 2 --out '" + out.string() + "' " + sets);
-  EXPECT_EQ(r.code, 0) << r.output;
-  return femdem::test::read_history(out / "history.csv");
+  auto r = femdem::test::run_shipped_scene(scene, "long/" + name, "--no-plot --threads 2 " + sets);
+  EXPECT_EQ(r.command.code, 0) << r.command.output;
+  return std::move(r.history);
 }
 
 double max_abs_volume_change(const History& h) {

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "support/run_command.hpp"
+#include "support/scene_run.hpp"
 #include "support/sweep_csv.hpp"
 
 namespace {
@@ -79,16 +80,11 @@ TEST(SphereImpact, RestitutionFollowsThorntonWithTheTheoreticalYieldVelocity) {
 
 // A yield stress too high to reach makes the same sphere elastic.
 TEST(SphereImpact, ElasticSphereComesBack) {
-  const fs::path out = fs::path(FEMDEM_TEST_TMP) / "long" / "sphere_impact_elastic";
-  fs::remove_all(out);
-  const auto r = femdem::test::run_command(
-      std::string("'") + FEMDEM_EXE + "' run '" + FEMDEM_SOURCE_DIR +
-      "/scenes/sphere_impact.toml' --set materials.soft_metal.yield_stress=1e15 "
-      "--threads 2 --quiet --out '" +
-      out.string() + "'");
-  ASSERT_EQ(r.code, 0) << r.output;
-  std::ifstream sf(out / "summary.json");
-  const auto s = nlohmann::json::parse(sf);
+  const auto run =
+      femdem::test::run_shipped_scene("sphere_impact.toml", "long/sphere_impact_elastic",
+                                      "--set materials.soft_metal.yield_stress=1e15 --threads 2");
+  ASSERT_EQ(run.command.code, 0) << run.command.output;
+  const auto& s = run.summary;
   const auto& e = s["bodies"]["ball"]["coefficient_of_restitution"];
   ASSERT_FALSE(e.is_null());
   std::printf("elastic sphere at 20 m/s: e %.4f\n", e["com"].get<double>());

@@ -8,12 +8,9 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <nlohmann/json.hpp>
-#include <string>
 #include <vector>
 
-#include "support/run_command.hpp"
+#include "support/scene_run.hpp"
 
 namespace {
 
@@ -36,15 +33,11 @@ std::vector<double> read_all(hid_t file, const char* name, std::vector<hsize_t>&
 }  // namespace
 
 TEST(TaylorBar, DefaultMeshMatchesTheThesis) {
-  const fs::path out = fs::path(FEMDEM_TEST_TMP) / "long" / "taylor_bar";
-  fs::remove_all(out);
-  const auto r = femdem::test::run_command(std::string("'") + FEMDEM_EXE + "' run '" +
-                                           FEMDEM_SOURCE_DIR + "/scenes/taylor_bar.toml' --out '" +
-                                           out.string() + "' --threads 2 --quiet");
-  ASSERT_EQ(r.code, 0) << r.output;
-
-  std::ifstream sf(out / "summary.json");
-  const auto s = nlohmann::json::parse(sf);
+  const auto run =
+      femdem::test::run_shipped_scene("taylor_bar.toml", "long/taylor_bar", "--threads 2");
+  ASSERT_EQ(run.command.code, 0) << run.command.output;
+  const fs::path& out = run.out;
+  const auto& s = run.summary;
   EXPECT_EQ(s["status"], "completed");
   EXPECT_NEAR(s["end_time"].get<double>(), 80e-6, 1e-12);
   const auto& rod = s["bodies"]["rod"];

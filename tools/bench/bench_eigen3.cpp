@@ -3,6 +3,10 @@
 //   Eigen3/<solver>/<strain>: b = F F^T with F = R (I + h X), X uniform in [-1, 1], R a random
 //   rotation; h = 1e-3 (strain 0) or 0.3 (strain 1). solver 0: symmetric_eigen3 (closed form +
 //   Jacobi polish), 1: symmetric_eigen3_jacobi, 2: Eigen computeDirect, 3: Eigen compute().
+//   HenckyStrain/<route>/<strain>: the Hencky strain tensor 0.5 ln b that the elastic update
+//   needs; route 0: symmetric_eigen3, three logarithms and the assembly (the general route),
+//   1: log_strain_by_series (materials/log_strain_series.hpp; the general route where it
+//   declines, i.e. at strain 1).
 // Reports s_per_call (ns shown as "n"). Run: build/tools/bench/bench_eigen3
 #include <benchmark/benchmark.h>
 
@@ -11,6 +15,8 @@
 #include <random>
 #include <vector>
 
+#include "materials/hencky.hpp"
+#include "materials/log_strain_series.hpp"
 #include "materials/symmetric_eigen3.hpp"
 
 using namespace femdem;
@@ -89,7 +95,31 @@ void Eigen3(benchmark::State& state) {
       kPool, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
+void hencky_strain_by_eigen(const double* s, double e[6]) {
+  const PrincipalStrains p = principal_log_strains(s);
+  assemble_from_principal(p.e, p.n, e);
+}
+
+void HenckyStrain(benchmark::State& state) {
+  const bool series = state.range(0) == 1;
+  const std::vector<double> in = inputs(state.range(1) == 0 ? 1e-3 : 0.3);
+  double sink = 0.0;
+  for (auto _ : state) {
+    for (int i = 0; i < kPool; ++i) {
+      const double* s = &in[6 * i];
+      double e[6];
+      if (!series || !log_strain_by_series(s, e)) hencky_strain_by_eigen(s, e);
+      sink += e[0] + e[3];
+    }
+    benchmark::DoNotOptimize(sink);
+  }
+  state.SetLabel(series ? "series (eigen where it declines)" : "eigen + 3 logs");
+  state.counters["s_per_call"] = benchmark::Counter(
+      kPool, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
 }  // namespace
 
 BENCHMARK(Eigen3)->ArgsProduct({{0, 1, 2, 3}, {0, 1}})->Unit(benchmark::kMicrosecond);
+BENCHMARK(HenckyStrain)->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMicrosecond);
 BENCHMARK_MAIN();
