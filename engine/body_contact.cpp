@@ -195,6 +195,11 @@ void BodyContact::evaluate(const Model& m, Pair& p, double step_dt, PairResult& 
   const double k_s = std::min(k_n, 0.5 * pair_stiffness_bound(a, b, p.penalty));
   r.stiffness = 2.0 * k_s;
   if (N > 0.0) r.penetration = 2.0 * out.energy / N;
+  for (int k = 0; k < 3; ++k) {
+    r.normal_force_b[k] = fb[k];
+    r.centroid[k] = out.overlap_centroid[k];
+  }
+  r.secant = k_s;
   if (p.friction <= 0.0 || !(N > 0.0)) return;
 
   const Vec3 n = fb / N;
@@ -230,6 +235,38 @@ void BodyContact::evaluate(const Model& m, Pair& p, double step_dt, PairResult& 
       r.force[3 * q + k] -= la[q] * ft[k];
       r.force[12 + 3 * q + k] += lb[q] * ft[k];
     }
+}
+
+void BodyContact::gather_patches(const Model& m) {
+  // Sorted by body pair, then by the pairs' own order: the sums do not depend on threads.
+  patches_.clear();
+  patch_keys_.clear();
+  for (std::size_t q = 0; q < pairs_.size(); ++q) {
+    if (!results_[q].touching) continue;
+    std::uint64_t a = static_cast<std::uint32_t>(m.contact_tet_body[pairs_[q].i]);
+    std::uint64_t b = static_cast<std::uint32_t>(m.contact_tet_body[pairs_[q].j]);
+    patch_keys_.emplace_back(std::min(a, b) << 32 | std::max(a, b), static_cast<std::uint32_t>(q));
+  }
+  std::sort(patch_keys_.begin(), patch_keys_.end());
+  for (std::size_t k = 0; k < patch_keys_.size(); ++k) {
+    const auto [key, q] = patch_keys_[k];
+    if (k == 0 || key != patch_keys_[k - 1].first) {
+      ContactPatch p;
+      p.body_a = static_cast<std::int32_t>(key >> 32);
+      p.body_b = static_cast<std::int32_t>(key & 0xffffffffu);
+      patches_.push_back(p);
+    }
+    ContactPatch& p = patches_.back();
+    const PairResult& r = results_[q];
+    const Vec3 fb(r.normal_force_b[0], r.normal_force_b[1], r.normal_force_b[2]);
+    // tet j's body receives fb; the patch's body a is the smaller index
+    const bool j_is_a = m.contact_tet_body[pairs_[q].j] == p.body_a;
+    p.force_on_a += j_is_a ? fb : Vec3(-fb);
+    const double w = fb.norm();
+    p.weighted_point += w * Vec3(r.centroid[0], r.centroid[1], r.centroid[2]);
+    p.weight += w;
+    p.stiffness += r.secant;
+  }
 }
 
 void BodyContact::compute(const Model& m, double step_dt, std::vector<double>& f) {
@@ -269,6 +306,7 @@ void BodyContact::compute(const Model& m, double step_dt, std::vector<double>& f
   }
   pair_evaluations_ += static_cast<std::int64_t>(pairs_.size());
   touching_evaluations_ += static_cast<std::int64_t>(touching_);
+  if (collect_patches_) gather_patches(m);
   for (std::size_t q = 0; q < pairs_.size(); ++q) {
     if (!results_[q].touching) continue;
     for (const auto* t : {&m.contact_tets[pairs_[q].i], &m.contact_tets[pairs_[q].j]})

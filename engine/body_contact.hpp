@@ -25,6 +25,7 @@
 
 #include "contact/nbs_broadphase.hpp"
 #include "contact/verlet_buffer.hpp"
+#include "engine/contact_patch.hpp"
 #include "engine/model.hpp"
 
 namespace femdem {
@@ -55,6 +56,10 @@ class BodyContact {
   // Totals over the run: candidate pairs evaluated, and those found touching.
   std::int64_t pair_evaluations() const { return pair_evaluations_; }
   std::int64_t touching_evaluations() const { return touching_evaluations_; }
+  // The touching pairs of the last compute() summed per pair of bodies (in the order of the
+  // bodies' indices, body_a < body_b): filled only when asked for (collect_patches).
+  void collect_patches(bool on) { collect_patches_ = on; }
+  const std::vector<ContactPatch>& patches() const { return patches_; }
 
  private:
   struct Pair {
@@ -67,10 +72,14 @@ class BodyContact {
   struct PairResult {
     double force[24];  // 4 corners of tet i, then 4 of tet j
     double energy = 0.0, dissipated = 0.0, stiffness = 0.0, penetration = 0.0;
+    double normal_force_b[3];  // the penalty force on tet j (before friction)
+    double centroid[3];        // of the overlap
+    double secant = 0.0;       // normal stiffness k_s
     bool touching = false;
   };
 
   void update_candidates(const Model& m);
+  void gather_patches(const Model& m);
   void evaluate(const Model& m, Pair& p, double step_dt, PairResult& r) const;
 
   bool active_ = false;
@@ -91,6 +100,9 @@ class BodyContact {
   double near_k_over_m_ = 0.0;  // largest over the nodes of candidate pairs
   double energy_ = 0.0, dissipated_ = 0.0, max_k_over_m_ = 0.0, max_penetration_ = 0.0;
   std::size_t touching_ = 0;
+  bool collect_patches_ = false;
+  std::vector<ContactPatch> patches_;
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> patch_keys_;  // (body pair, result index)
   std::int64_t broadphase_runs_ = 0;
   std::int64_t pair_evaluations_ = 0, touching_evaluations_ = 0;
 };

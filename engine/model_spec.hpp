@@ -114,6 +114,10 @@ struct ContactPairSpec {
 struct ContactSettings {
   double penalty_factor = 100.0;  // penalty = factor * E of the stiffer side (the thesis' k = aE)
   double friction = 0.0;          // Coulomb coefficient between bodies
+  // Fraction of critical damping of every contact between two bodies or a body and a wall,
+  // acting on the bodies' rigid motion (engine/impact_damping.hpp): sets the restitution of an
+  // impact, e = exp(-pi xi / sqrt(1 - xi^2)) for a linear contact. 0: elastic impacts.
+  double impact_damping = 0.0;
   std::vector<ContactPairSpec> pairs;
   // Friction coefficient between two bodies: a pair's own, else the common one.
   double friction_between(int a, int b) const {

@@ -8,6 +8,7 @@
 
 #include "engine/element_kernel.hpp"
 #include "engine/errors.hpp"
+#include "engine/impact_damping.hpp"
 #include "materials/symmetric_eigen3.hpp"
 #include "materials/von_mises.hpp"
 
@@ -73,6 +74,12 @@ Simulation::Simulation(Model model) : model_(std::move(model)), body_contact_(mo
   if (wall_friction) wall_stick_.assign(3 * model_.surface.size() * model_.walls.size(), 0.0);
   elem_scratch_.assign(ne, 0.0);
   wall_stiffness_.assign(model_.walls.size(), 0.0);
+  if (model_.contact.impact_damping > 0.0) {
+    wall_patches_.assign(model_.bodies.size() * model_.walls.size(), ContactPatch{});
+    rigid_.assign(model_.bodies.size(), RigidMotion{});
+    rigid_known_.assign(model_.bodies.size(), 0);
+    body_contact_.collect_patches(true);
+  }
   compute_forces(0.0);
   update_force_driven_walls(0.0);
   // mass scaling at t = 0 keeps the given initial velocities: it is part of the initial state
@@ -243,6 +250,8 @@ void Simulation::compute_forces(double step_dt) {
   std::fill(m.f_contact.begin(), m.f_contact.end(), 0.0);
   double contact = 0.0, damping_power = 0.0, friction_dissipated = 0.0;
   for (auto& w : m.walls) w.force.setZero();
+  const bool impact_damping = m.contact.impact_damping > 0.0;
+  if (impact_damping) std::fill(wall_patches_.begin(), wall_patches_.end(), ContactPatch{});
   if (!m.walls.empty()) {
     const std::size_t nw = m.walls.size();
     for (std::size_t si = 0; si < m.surface.size(); ++si) {
@@ -268,6 +277,13 @@ void Simulation::compute_forces(double step_dt) {
           continue;
         }
         double fn = k * d;
+        if (impact_damping) {
+          ContactPatch& q = wall_patches_[static_cast<std::size_t>(s.body) * nw + wi];
+          q.force_on_a += fn * w.normal;
+          q.weighted_point += fn * p;
+          q.weight += fn;
+          q.stiffness += k;
+        }
         const Vec3 v_rel = v - w.step_velocity;
         const double vn = v_rel.dot(w.normal);
         if (w.damping > 0.0) {
@@ -311,10 +327,25 @@ void Simulation::compute_forces(double step_dt) {
     contact += body_contact_.energy();
     friction_dissipated += body_contact_.dissipated();
   }
+  // 3c. impact damping on the bodies' rigid motions, per contact patch
+  if (impact_damping) {
+    patches_.assign(body_contact_.patches().begin(), body_contact_.patches().end());
+    const std::size_t nw = m.walls.size();
+    for (std::size_t i = 0; i < wall_patches_.size(); ++i) {
+      ContactPatch q = wall_patches_[i];
+      if (!(q.weight > 0.0)) continue;
+      q.body_a = static_cast<std::int32_t>(i / nw);
+      q.body_b = ContactPatch::wall_side(i % nw);
+      patches_.push_back(q);
+    }
+    std::fill(rigid_known_.begin(), rigid_known_.end(), 0);
+    damping_power += damp_impacts(m, m.contact.impact_damping, patches_, accel_, 0.5 * step_dt,
+                                  rigid_, rigid_known_);
+  }
   contact_energy_ = contact;
   contact_dissipation_ += friction_dissipated - damping_power * step_dt;
 
-  // 3c. deformation damping: part of the internal force (a viscous stress of the bodies), work
+  // 3d. deformation damping: part of the internal force (a viscous stress of the bodies), work
   // counted with the bulk viscosity's
   if (m.settings.deformation_damping > 0.0)
     viscous_dissipation_ += damp_deformation(m.settings.deformation_damping) * step_dt;
@@ -345,27 +376,11 @@ double Simulation::damp_deformation(double alpha) {
     if (b.fixed) continue;
     const std::int32_t n0 = b.first_node, n1 = b.first_node + b.node_count;
     // the rigid motion with the body's momentum and angular momentum (half-step velocities)
-    double mass = 0.0;
-    Vec3 c = Vec3::Zero(), p = Vec3::Zero();
-    for (std::int32_t n = n0; n < n1; ++n) {
-      const double mn = m.mass[n];
-      mass += mn;
-      c += mn * Vec3(m.x[3 * n], m.x[3 * n + 1], m.x[3 * n + 2]);
-      p += mn * Vec3(m.v[3 * n], m.v[3 * n + 1], m.v[3 * n + 2]);
-    }
-    if (!(mass > 0.0)) continue;
-    c /= mass;
-    const Vec3 vc = p / mass;
-    Vec3 L = Vec3::Zero();
-    Eigen::Matrix3d I = Eigen::Matrix3d::Zero();
-    for (std::int32_t n = n0; n < n1; ++n) {
-      const double mn = m.mass[n];
-      const Vec3 r = Vec3(m.x[3 * n], m.x[3 * n + 1], m.x[3 * n + 2]) - c;
-      L += mn * r.cross(Vec3(m.v[3 * n], m.v[3 * n + 1], m.v[3 * n + 2]) - vc);
-      I += mn * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
-    }
-    // a solid body's inertia is positive definite; LDLT also copes with a flat one
-    const Vec3 w = I.ldlt().solve(L);
+    const RigidMotion rm = rigid_motion(m, b);
+    if (!(rm.mass > 0.0)) continue;
+    const Vec3& c = rm.centre;
+    const Vec3& vc = rm.velocity;
+    const Vec3& w = rm.angular_velocity;
     for (std::int32_t n = n0; n < n1; ++n) {
       const double mn = m.mass[n];
       const Vec3 r = Vec3(m.x[3 * n], m.x[3 * n + 1], m.x[3 * n + 2]) - c;

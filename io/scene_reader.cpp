@@ -1429,12 +1429,17 @@ void Reader::read_contact(const toml::table& root, ModelSpec& spec, toml::table&
   ContactSettings& c = spec.contact;
   if (const toml::node* n = root.get("contact")) {
     const toml::table& t = require_table(n, "contact");
-    check_keys(t, "contact", {"penalty_factor", "friction", "pairs"});
+    check_keys(t, "contact", {"penalty_factor", "friction", "impact_damping", "pairs"});
     c.penalty_factor = positive(t, "penalty_factor", "contact", c.penalty_factor, &t);
     c.friction = number(t, "friction", "contact", c.friction, &t);
     if (c.friction < 0.0)
       fail(t.get("friction"), "contact.friction",
            "must not be negative, got " + format_number(c.friction));
+    c.impact_damping = number(t, "impact_damping", "contact", c.impact_damping, &t);
+    if (!(c.impact_damping >= 0.0 && c.impact_damping < 1.0))
+      fail(t.get("impact_damping"), "contact.impact_damping",
+           "must be a fraction of critical damping in [0, 1), got " +
+               format_number(c.impact_damping));
     std::vector<std::string> body_names;
     for (const auto& b : spec.bodies) body_names.push_back(b.name);
     toml::array pairs_out;
@@ -1479,6 +1484,7 @@ void Reader::read_contact(const toml::table& root, ModelSpec& spec, toml::table&
   }
   out.insert_or_assign("penalty_factor", c.penalty_factor);
   out.insert_or_assign("friction", c.friction);
+  out.insert_or_assign("impact_damping", c.impact_damping);
 }
 
 void Reader::read_compaction(const toml::table& root, ModelSpec& spec, toml::table& out,

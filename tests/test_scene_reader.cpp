@@ -92,6 +92,7 @@ const std::vector<BadCase> kBadCases = {
   {"mass_scaling_negative", 3, "end_time = 1e-3\nmass_scaling_time_step = -1e-9", "", "simulation.mass_scaling_time_step", 4, "0 (off) or a positive"},
   {"mass_scaling_with_fixed_step", 3, "end_time = 1e-3\ntime_step = 1e-6\nmass_scaling_time_step = 1e-9", "", "simulation.mass_scaling_time_step", 5, "automatic step only"},
   {"contact_pair_unknown_body", 0, "", "[[contact.pairs]]\nbodies = [\"ball\", \"bal\"]\nfriction = 0.2", "contact.pairs[0].bodies", 21, "did you mean 'ball'?"},
+  {"impact_damping_one", 0, "", "[contact]\nimpact_damping = 1.0", "contact.impact_damping", 21, "[0, 1)"},
   {"contact_pair_same_body", 0, "", "[[contact.pairs]]\nbodies = [\"ball\", \"ball\"]\nfriction = 0.2", "contact.pairs[0].bodies", 21, "same body twice"},
   {"contact_pair_names_a_wall", 0, "", "[[contact.pairs]]\nbodies = [\"ball\", \"floor\"]\nfriction = -0.2", "contact.pairs[0].bodies", 21, "unknown body 'floor'"},
   {"threads_not_integer", 3, "end_time = 1e-3\nthreads = 1.5", "", "simulation.threads", 4, "expected an integer"},
@@ -276,8 +277,7 @@ TEST(SceneReader, CadMeshErrorsNameTheScenesKey) {
   } catch (const InputError& e) {
     EXPECT_EQ(e.key, "bodies.ball.mesh.file");
     EXPECT_EQ(e.line, 13);
-    EXPECT_NE(std::string(e.what()).find("cannot mesh the surface"), std::string::npos)
-        << e.what();
+    EXPECT_NE(std::string(e.what()).find("cannot mesh the surface"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("part.stl"), std::string::npos) << e.what();
   }
 }

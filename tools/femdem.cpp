@@ -221,8 +221,14 @@ void print_summary(const femdem::SceneFile& scene) {
     }
     fmt::print("\n");
   }
-  fmt::print("Contact\n  penalty factor {:g}, friction {:g}\n\n", m.contact.penalty_factor,
+  fmt::print("Contact\n  penalty factor {:g}, friction {:g}", m.contact.penalty_factor,
              m.contact.friction);
+  if (m.contact.impact_damping > 0.0)
+    fmt::print(", impact damping {:g} (restitution about {:.2f} for a linear contact)",
+               m.contact.impact_damping,
+               std::exp(-M_PI * m.contact.impact_damping /
+                        std::sqrt(1.0 - m.contact.impact_damping * m.contact.impact_damping)));
+  fmt::print("\n\n");
   fmt::print("Scene OK.\n");
 }
 

@@ -1,0 +1,43 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// Impact damping: a dashpot between the rigid motions of two bodies in contact (or a body and a
+// wall), so that an impact loses energy as real ones do (a restitution below 1) while contact
+// stays a penalty potential.
+//
+// Why on the rigid motion. Penalty contact is elastic: a unit that strikes a slope gives back
+// what it took, and a layer of tumbling units never settles. A dashpot per contact node or per
+// pair of contact tetrahedra would have to be sized by the light nodes it acts on (c ~ sqrt(k
+// m_node)): it then hardly changes the restitution of a body (the wall `damping` changes that of
+// a dropped sphere by 1e-3), and sized by the body's mass it is unstable on those nodes. Here
+// each contact patch (the touching pairs between two bodies, summed: engine/contact_patch.hpp)
+// gets one force along its normal at its centre,
+//   f = -c v_n,   c = 2 xi sqrt(k m_eff),   1/m_eff = sum over the two bodies of
+//                                           1/M + (r x n) . I^-1 (r x n),
+// with v_n the normal relative velocity of the two rigid motions at the centre, k the patch's
+// normal stiffness and m_eff the mass the two bodies oppose along the normal there. It is put on
+// each body as a rigid load (engine/rigid_motion.hpp): it changes momentum and angular
+// momentum, not the deformation, its explicit stability limit is that of a body on its contact
+// spring (2 xi omega dt < 2), and momentum is exchanged exactly (equal and opposite). For a
+// linear contact a damping ratio xi gives the restitution e = exp(-pi xi / sqrt(1 - xi^2)). It
+// never pulls: the damping force is kept above minus the patch's elastic force, so a separating
+// patch is not held. Its work, f v_n <= 0, is contact dissipation.
+#include <cstdint>
+#include <vector>
+
+#include "engine/contact_patch.hpp"
+#include "engine/model.hpp"
+#include "engine/rigid_motion.hpp"
+
+namespace femdem {
+
+// Adds the damping forces of the patches to m.f_contact (and their reactions to the walls'
+// force) and returns their power (<= 0). The velocities are those of the coming full step,
+// predicted from the half-step velocities and the last accelerations (v + half_dt accel): the
+// integrator's kinetic energy sees a force work with the full-step velocity, and a dashpot taken
+// at the half step would be off by c dt / 2m of its work, 1 % for a strong impact damping.
+// rigid, known: per body, the rigid motions computed so far this step (filled on demand).
+double damp_impacts(Model& m, double ratio, const std::vector<ContactPatch>& patches,
+                    const std::vector<double>& accel, double half_dt,
+                    std::vector<RigidMotion>& rigid, std::vector<std::uint8_t>& known);
+
+}  // namespace femdem
