@@ -24,19 +24,8 @@ namespace {
 // Two 0.1 m blocks 1 mm apart, closing at 2 m/s, offset sideways so that the impact is not
 // symmetric (edges and faces meet).
 ModelSpec two_blocks() {
-  ModelSpec s;
-  s.materials.push_back(rubbery());
-  BodySpec a, b;
-  a.name = "a";
-  a.material = 0;
-  a.mesh = box_at(Vec3(0.1, 0.1, 0.1), Vec3(0, 0, 0));
-  a.velocity = Vec3(0, 0, 1.0);
-  b.name = "b";
-  b.material = 0;
-  b.mesh = box_at(Vec3(0.1, 0.1, 0.1), Vec3(0.03, 0.02, 0.101));
-  b.velocity = Vec3(0, 0, -1.0);
-  b.angular_velocity = Vec3(0, 0, 5.0);
-  s.bodies = {a, b};
+  ModelSpec s = femdem::test::two_blocks_closing(Vec3(0.03, 0.02, 0.101), 2.0);
+  s.bodies[1].angular_velocity = Vec3(0, 0, 5.0);
   // a softer penalty than the default 100 E keeps the step (and the test) 3x longer
   s.contact.penalty_factor = 10.0;
   return s;

@@ -29,18 +29,7 @@ namespace {
 // Two 0.1 m blocks, b above a, with a gap (negative: an overlap) between them, closing at
 // 2 m/s; b is shifted sideways by `offset`.
 ModelSpec two_blocks(double gap, double speed, Vec3 offset = Vec3(0.03, 0.02, 0.0)) {
-  ModelSpec s;
-  s.materials.push_back(rubbery());
-  BodySpec a, b;
-  a.name = "a";
-  a.material = 0;
-  a.mesh = box_at(Vec3(0.1, 0.1, 0.1), Vec3(0, 0, 0));
-  a.velocity = Vec3(0, 0, 0.5 * speed);
-  b.name = "b";
-  b.material = 0;
-  b.mesh = box_at(Vec3(0.1, 0.1, 0.1), offset + Vec3(0, 0, 0.1 + gap));
-  b.velocity = Vec3(0, 0, -0.5 * speed);
-  s.bodies = {a, b};
+  ModelSpec s = femdem::test::two_blocks_closing(offset + Vec3(0, 0, 0.1 + gap), speed);
   s.contact.penalty_factor = 10.0;
   return s;
 }

@@ -22,6 +22,24 @@ inline Tet10Mesh box_at(Vec3 size, Vec3 origin, int n = 2) {
   return m;
 }
 
+// Two such 0.1 m blocks, "a" at the origin and "b" at b_origin, closing along z at
+// closing_speed (a up, b down, half each).
+inline ModelSpec two_blocks_closing(Vec3 b_origin, double closing_speed) {
+  ModelSpec s;
+  s.materials.push_back(rubbery());
+  BodySpec a, b;
+  a.name = "a";
+  a.material = 0;
+  a.mesh = box_at(Vec3(0.1, 0.1, 0.1), Vec3(0, 0, 0));
+  a.velocity = Vec3(0, 0, 0.5 * closing_speed);
+  b.name = "b";
+  b.material = 0;
+  b.mesh = box_at(Vec3(0.1, 0.1, 0.1), b_origin);
+  b.velocity = Vec3(0, 0, -0.5 * closing_speed);
+  s.bodies = {a, b};
+  return s;
+}
+
 inline Vec3 momentum(const Model& m) {
   Vec3 p = Vec3::Zero();
   for (std::int32_t n = 0; n < m.node_count; ++n)
