@@ -122,6 +122,31 @@ def draw(ax, x, conn, element_body, fixed, elev, azim, title):
     ax.set_title(title, fontsize=9)
 
 
+def read_summary(out):
+    """summary.json, or for a run still going (or killed) what history.csv's last row says."""
+    path = os.path.join(out, "summary.json")
+    if os.path.exists(path):
+        with open(path) as f:
+            return json.load(f)
+    h = read_history(os.path.join(out, "history.csv"))
+    names = sorted({k[: -len(".com_x")] for k in h if k.endswith(".com_x")})
+    bodies = {}
+    for n in names:
+        bodies[n] = {"com": [h[f"{n}.com_{c}"][-1] for c in "xyz"],
+                     "vcom": [h[f"{n}.vcom_{c}"][-1] for c in "xyz"],
+                     "kinetic_energy": h[f"{n}.kinetic_energy"][-1]}
+    ke = np.asarray(h["kinetic_energy"])
+    pen = np.asarray(h.get("contact.max_penetration", [0.0]))
+    print("(no summary.json: the run is going or was stopped; read from history.csv)")
+    return {"bodies": bodies, "steps": len(h["time"]), "wall_time_s": float("nan"), "threads": 0,
+            "end_time": h["time"][-1], "status": "running or stopped",
+            "extra": {"peak_kinetic_energy": float(ke.max()),
+                      "peak_kinetic_energy_time": float(h["time"][int(ke.argmax())]),
+                      "contact_max_penetration": float(pen.max()),
+                      "contact_max_penetration_time": float(h["time"][int(pen.argmax())]),
+                      "contact_final_max_penetration": float(pen[-1])}}
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("out")
@@ -135,8 +160,7 @@ def main():
                     help="margin kept from the layer's lateral and along-slope ends (m); default D_n")
     args = ap.parse_args()
     out = args.out
-    with open(os.path.join(out, "summary.json")) as f:
-        summ = json.load(f)
+    summ = read_summary(out)
     x, conn, element_body, names, t_end = load(out)
     bodies = summ["bodies"]
     fixed = np.array([bodies[n]["kinetic_energy"] == 0.0 and bodies[n]["vcom"] == [0, 0, 0]
@@ -149,7 +173,8 @@ def main():
     up, across, normal = frame
 
     extra = summ.get("extra", {})
-    print(f"run: {summ['steps']} steps, {summ['wall_time_s'] / 60:.1f} min wall, "
+    print(f"run: {summ['steps']} {'history rows' if summ['threads'] == 0 else 'steps'}, "
+          f"{summ['wall_time_s'] / 60:.1f} min wall, "
           f"{summ['threads']} thread(s), end time {summ['end_time']:.3f} s, status {summ['status']}")
     if "at_rest_time" in extra:
         print(f"at rest at t = {extra['at_rest_time']:.3f} s (kinetic energy below 1e-3 of its "
