@@ -7,16 +7,22 @@
 namespace femdem {
 
 double damp_impacts(Model& m, double ratio, const std::vector<ContactPatch>& patches,
-                    const std::vector<double>& accel, double half_dt,
-                    std::vector<RigidMotion>& rigid, std::vector<std::uint8_t>& known) {
+                    const std::vector<double>& accel, double half_dt, ImpactDampingScratch& s) {
+  std::fill(s.known.begin(), s.known.end(), 0);
   auto motion = [&](std::int32_t b) -> const RigidMotion& {
-    if (!known[b]) {
-      rigid[b] = rigid_motion(m, m.bodies[b], accel.data(), half_dt);
-      known[b] = 1;
+    if (!s.known[b]) {
+      s.rigid[b] = rigid_motion(m, m.bodies[b], accel.data(), half_dt);
+      s.force[b].setZero();
+      s.moment[b].setZero();
+      s.known[b] = 1;
     }
-    return rigid[b];
+    return s.rigid[b];
   };
   auto free_body = [&](std::int32_t b) { return b >= 0 && !m.bodies[b].fixed; };
+  auto load = [&](std::int32_t b, const Vec3& x, const Vec3& f) {
+    s.force[b] += f;
+    s.moment[b] += (x - s.rigid[b].centre).cross(f);
+  };
   double power = 0.0;
   for (const ContactPatch& p : patches) {
     const double F = p.force_on_a.norm();
@@ -45,14 +51,16 @@ double damp_impacts(Model& m, double ratio, const std::vector<ContactPatch>& pat
     const double fd = std::max(-c * vn, -F);
     power += fd * vn;
     const Vec3 f = fd * n;
-    if (free_body(p.body_a))
-      add_rigid_load(m, m.bodies[p.body_a], rigid[p.body_a], x, f, m.f_contact);
+    if (free_body(p.body_a)) load(p.body_a, x, f);
     if (free_body(p.body_b)) {
-      add_rigid_load(m, m.bodies[p.body_b], rigid[p.body_b], x, -f, m.f_contact);
+      load(p.body_b, x, -f);
     } else if (p.body_b < 0) {
       m.walls[static_cast<std::size_t>(-1 - p.body_b)].force -= f;
     }
   }
+  for (std::size_t b = 0; b < m.bodies.size(); ++b)
+    if (s.known[b] && s.rigid[b].mass > 0.0)
+      add_rigid_load(m, m.bodies[b], s.rigid[b], s.force[b], s.moment[b], m.f_contact);
   return power;
 }
 

@@ -35,9 +35,22 @@ namespace femdem {
 // predicted from the half-step velocities and the last accelerations (v + half_dt accel): the
 // integrator's kinetic energy sees a force work with the full-step velocity, and a dashpot taken
 // at the half step would be off by c dt / 2m of its work, 1 % for a strong impact damping.
-// rigid, known: per body, the rigid motions computed so far this step (filled on demand).
+// The per-body work space of damp_impacts, kept between steps (sized to the bodies once).
+struct ImpactDampingScratch {
+  std::vector<RigidMotion> rigid;   // the rigid motions computed so far this step
+  std::vector<std::uint8_t> known;  // rigid[b] is this step's
+  std::vector<Vec3> force, moment;  // the damping loads on each body, summed over its patches
+  void resize(std::size_t bodies) {
+    rigid.assign(bodies, RigidMotion{});
+    known.assign(bodies, 0);
+    force.assign(bodies, Vec3::Zero());
+    moment.assign(bodies, Vec3::Zero());
+  }
+};
+
+// Each body's patches are summed into one resultant and moment first, so that its nodes are
+// visited once however many bodies and walls it touches.
 double damp_impacts(Model& m, double ratio, const std::vector<ContactPatch>& patches,
-                    const std::vector<double>& accel, double half_dt,
-                    std::vector<RigidMotion>& rigid, std::vector<std::uint8_t>& known);
+                    const std::vector<double>& accel, double half_dt, ImpactDampingScratch& s);
 
 }  // namespace femdem

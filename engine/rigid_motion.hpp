@@ -64,15 +64,15 @@ inline RigidMotion rigid_motion(const Model& m, const Body& b, const double* acc
   return r;
 }
 
-// Adds to f (3 per node) the nodal forces m_i (F / M + alpha x r_i), alpha = I^-1 ((p - c) x F):
-// the force F applied at p to the body as if it were rigid. Their resultant is F, their moment
-// about the centre (p - c) x F, and their power F . v_rigid(p) for any velocity field with the
-// body's momentum and angular momentum: a load on the rigid motion only, whose stiffness limit
-// is the body's mass, not that of a light node.
-inline void add_rigid_load(const Model& m, const Body& b, const RigidMotion& r, const Vec3& p,
-                           const Vec3& F, std::vector<double>& f) {
+// Adds to f (3 per node) the nodal forces m_i (F / M + alpha x r_i), alpha = I^-1 M: the load of
+// resultant F and moment M about the centre applied to the body as if it were rigid (a force F
+// at p has M = (p - c) x F). Their resultant is F, their moment M, and their power F . v_c +
+// M . omega for any velocity field with the body's momentum and angular momentum: a load on the
+// rigid motion only, whose stiffness limit is the body's mass, not that of a light node.
+inline void add_rigid_load(const Model& m, const Body& b, const RigidMotion& r, const Vec3& F,
+                           const Vec3& M, std::vector<double>& f) {
   const Vec3 a = F / r.mass;
-  const Vec3 alpha = r.inertia_inverse * (p - r.centre).cross(F);
+  const Vec3 alpha = r.inertia_inverse * M;
   const std::int32_t n0 = b.first_node, n1 = b.first_node + b.node_count;
   for (std::int32_t n = n0; n < n1; ++n) {
     const double mn = m.mass[n];

@@ -8,7 +8,6 @@
 
 #include "engine/element_kernel.hpp"
 #include "engine/errors.hpp"
-#include "engine/impact_damping.hpp"
 #include "materials/symmetric_eigen3.hpp"
 #include "materials/von_mises.hpp"
 
@@ -76,8 +75,7 @@ Simulation::Simulation(Model model) : model_(std::move(model)), body_contact_(mo
   wall_stiffness_.assign(model_.walls.size(), 0.0);
   if (model_.contact.impact_damping > 0.0) {
     wall_patches_.assign(model_.bodies.size() * model_.walls.size(), ContactPatch{});
-    rigid_.assign(model_.bodies.size(), RigidMotion{});
-    rigid_known_.assign(model_.bodies.size(), 0);
+    impact_scratch_.resize(model_.bodies.size());
     body_contact_.collect_patches(true);
   }
   compute_forces(0.0);
@@ -338,9 +336,8 @@ void Simulation::compute_forces(double step_dt) {
       q.body_b = ContactPatch::wall_side(i % nw);
       patches_.push_back(q);
     }
-    std::fill(rigid_known_.begin(), rigid_known_.end(), 0);
-    damping_power += damp_impacts(m, m.contact.impact_damping, patches_, accel_, 0.5 * step_dt,
-                                  rigid_, rigid_known_);
+    damping_power +=
+        damp_impacts(m, m.contact.impact_damping, patches_, accel_, 0.5 * step_dt, impact_scratch_);
   }
   contact_energy_ = contact;
   contact_dissipation_ += friction_dissipated - damping_power * step_dt;

@@ -10,8 +10,8 @@
 
 #include "engine/body_contact.hpp"
 #include "engine/contact_patch.hpp"
+#include "engine/impact_damping.hpp"
 #include "engine/model.hpp"
-#include "engine/rigid_motion.hpp"
 #include "materials/drucker_prager.hpp"
 #include "materials/mohr_coulomb.hpp"
 #include "materials/piecewise_drucker_prager.hpp"
@@ -135,8 +135,7 @@ class Simulation {
   // impact damping (contact.impact_damping > 0): the body-wall patches (per body x wall), all
   // patches of the step, and the rigid motions of the bodies in them
   std::vector<ContactPatch> wall_patches_, patches_;
-  std::vector<RigidMotion> rigid_;
-  std::vector<std::uint8_t> rigid_known_;
+  ImpactDampingScratch impact_scratch_;
   std::vector<double> elem_viscous_power_;    // per element, this step
   mutable std::vector<double> elem_scratch_;  // per element, for bodies_volume
   std::vector<double> wall_stiffness_;        // per wall: contact stiffness near it (stable step)

@@ -103,7 +103,7 @@ Impact two_blocks(double xi) {
   std::printf(
       "two blocks, xi %.2f: e %.4f (spring-dashpot %.4f), dissipated %.4f, momentum %.1e, "
       "balance %.1e\n",
-      xi, r.restitution, linear_restitution(xi), r.dissipated, r.momentum_drift, r.balance);
+      xi, r.restitution, no_pull_restitution(xi), r.dissipated, r.momentum_drift, r.balance);
   return r;
 }
 
