@@ -2,15 +2,16 @@
 // The armour layer of issue 6 run in full (scenes/armour_layer.toml, docs/VALIDATION.md
 // section 6, "Armour layer"): 30 tetrapods fall onto a slope of fixed cubes and must come to
 // rest by themselves (kinetic energy below 1e-3 of its peak for 0.1 s, the issue's criterion)
-// within the scene's 5 s, resting on the slope, the cubes, the floor or each other:
-// - every unit above the floor and the slope plane, none still moving;
-// - overlaps between bodies small against the element size (0.4 m): below 2 % of it at rest.
-//   The penalty lets a unit sink by about (its weight over the contact area) h / (10 E); with
-//   the settling modulus this is of the order of 1e-3 h, so 2 % is a wide bound that still
-//   catches units passing into each other;
+// within the scene's 8 s, resting on the slope, the cubes, the floor or each other:
+// - every unit above the floor and the slope plane;
+// - overlaps between bodies at rest below 1 cm (2.5 % of the element size h 0.4 m): a fifth of
+//   the 5 cm grid on which tools/armour_layer.py measures the layer's solid fraction, so the
+//   overlaps do not change the measured packing. Units rest on leg tips and edges, where the
+//   contact area grows with the overlap, so they sink deeper than a flat face would (measured
+//   6.8 mm at rest, 2026-11-30);
 // - the energy balance within 1 % (friction, damping and contact accounted);
 // - mass scaling adds under 1 % of a unit's mass.
-// About 20-45 min on 2 threads (docs/PERFORMANCE.md).
+// About 50 min on 2 threads (docs/PERFORMANCE.md).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -28,7 +29,7 @@ TEST(ArmourLayer, ThirtyTetrapodsComeToRestOnTheSlope) {
   EXPECT_LT(s["energy"]["kinetic"].get<double>(), 1e-3 * peak);
   EXPECT_LT(std::fabs(s["energy"]["balance_error"].get<double>()), 1e-2);
   const double h = 0.4;
-  EXPECT_LT(extra["contact_final_max_penetration"].get<double>(), 0.02 * h);
+  EXPECT_LT(extra["contact_final_max_penetration"].get<double>(), 0.025 * h);
   // the slope: z = x / 1.5 through the origin, outward normal (-1, 0, 1.5) / |.|
   const double nx = -1.0 / std::sqrt(3.25), nz = 1.5 / std::sqrt(3.25);
   int units = 0;
