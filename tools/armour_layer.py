@@ -5,7 +5,8 @@
 usage: tools/armour_layer.py OUT [-o PNG] [--unit-volume V] [--slope 1.5]
 
 Reads OUT/results.h5 (the last frame), OUT/summary.json and OUT/history.csv, and prints:
-- when the run came to rest, the peak kinetic energy, the run time;
+- when the run came to rest, the peak kinetic energy, the run time; how many units move slower
+  than 0.1 m/s at the end and the three fastest with their share of the kinetic energy;
 - the deepest overlap between bodies over the run and at the end (summary.json, the contact
   estimate 2E/N of the deepest pair), absolute and relative to the element size;
 - the packing density of the layer, measured in a control volume over the slope away from the
@@ -181,6 +182,16 @@ def main():
               f"peak {extra['peak_kinetic_energy']:.4g} J at t = {extra['peak_kinetic_energy_time']:.3f} s)")
     else:
         print("NOT at rest by the end of the run")
+    # The rest criterion is on the total: say which units still hold what is left of it.
+    speed = {names[i]: float(np.linalg.norm(bodies[names[i]]["vcom"])) for i in units}
+    energy = {names[i]: float(bodies[names[i]]["kinetic_energy"]) for i in units}
+    total = sum(energy.values())
+    slow = sum(v < 0.1 for v in speed.values())
+    fastest = sorted(speed, key=speed.get, reverse=True)[:3]
+    print(f"units at the end: {slow} of {len(units)} slower than 0.1 m/s; fastest "
+          + ", ".join(f"{n} {speed[n]:.2f} m/s ({energy[n] / total:.0%} of their "
+                      "kinetic energy)" if total > 0 else f"{n} {speed[n]:.2f} m/s"
+                      for n in fastest))
     pen, pen_end = extra.get("contact_max_penetration", 0.0), extra.get("contact_final_max_penetration", 0.0)
     print(f"deepest overlap between bodies: {pen * 1e3:.2f} mm at t = "
           f"{extra.get('contact_max_penetration_time', 0.0):.3f} s ({pen / args.element_size:.2e} of "
