@@ -189,8 +189,8 @@ def main():
     slow = sum(v < 0.1 for v in speed.values())
     fastest = sorted(speed, key=speed.get, reverse=True)[:3]
     print(f"units at the end: {slow} of {len(units)} slower than 0.1 m/s; fastest "
-          + ", ".join(f"{n} {speed[n]:.2f} m/s ({energy[n] / total:.0%} of their "
-                      "kinetic energy)" if total > 0 else f"{n} {speed[n]:.2f} m/s"
+          + ", ".join(f"{n} {speed[n]:.2f} m/s ({energy[n] / total:.0%} of the kinetic energy)"
+                      if total > 0 else f"{n} {speed[n]:.2f} m/s"
                       for n in fastest))
     pen, pen_end = extra.get("contact_max_penetration", 0.0), extra.get("contact_final_max_penetration", 0.0)
     print(f"deepest overlap between bodies: {pen * 1e3:.2f} mm at t = "
