@@ -178,8 +178,10 @@ def main():
           f"{summ['wall_time_s'] / 60:.1f} min wall, "
           f"{summ['threads']} thread(s), end time {summ['end_time']:.3f} s, status {summ['status']}")
     if "at_rest_time" in extra:
-        print(f"at rest at t = {extra['at_rest_time']:.3f} s (kinetic energy below 1e-3 of its "
-              f"peak {extra['peak_kinetic_energy']:.4g} J at t = {extra['peak_kinetic_energy_time']:.3f} s)")
+        ke_end = summ["energy"]["kinetic"] if "energy" in summ else float("nan")
+        print(f"at rest at t = {extra['at_rest_time']:.3f} s (kinetic energy {ke_end:.4g} J, "
+              f"{ke_end / extra['peak_kinetic_energy']:.2e} of its peak "
+              f"{extra['peak_kinetic_energy']:.4g} J at t = {extra['peak_kinetic_energy_time']:.3f} s)")
     else:
         print("NOT at rest by the end of the run")
     # The rest criterion is on the total: say which units still hold what is left of it.
@@ -253,6 +255,7 @@ def main():
     ke = np.asarray(h["kinetic_energy"])
     ax4.semilogy(h["time"], np.maximum(ke, 1e-30), "r-", label="kinetic energy")
     ax4.axhline(1e-3 * ke.max(), color="k", ls="--", label="1e-3 of the peak")
+    ax4.axhline(1e-4 * ke.max(), color="k", ls=":", label="1e-4 of the peak")
     ax4.set_ylim(max(ke.max() * 1e-6, 1e-30), ke.max() * 3)
     ax4.set_xlabel("time (s)")
     ax4.set_ylabel("J")

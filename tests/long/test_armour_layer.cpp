@@ -3,7 +3,9 @@
 // section 6, "Armour layer"): 30 tetrapods fall onto a slope of fixed cubes and must come to
 // rest by themselves (kinetic energy below 1e-3 of its peak for 0.1 s, the criterion)
 // within the scene's 8 s, resting on the slope, the cubes, the floor or each other:
-// - every unit above the floor and the slope plane;
+// - every unit above the floor and the slope plane, and slower than 0.3 m/s: the total kinetic
+//   energy can pass the threshold while one unit still tumbles down the slope at
+//   1-1.8 m/s (measured with the threshold at 1e-3; the scene uses 1e-4, docs/VALIDATION.md);
 // - overlaps between bodies at rest below 1 cm (2.5 % of the element size h 0.4 m): a fifth of
 //   the 5 cm grid on which tools/armour_layer.py measures the layer's solid fraction, so the
 //   overlaps do not change the measured packing. Units rest on leg tips and edges, where the
@@ -11,7 +13,7 @@
 //   6.8 mm at rest, 2026-11-30);
 // - the energy balance within 1 % (friction, damping and contact accounted);
 // - mass scaling adds under 1 % of a unit's mass.
-// About 50 min on 2 threads (docs/PERFORMANCE.md).
+// About 70 min on 2 threads (docs/PERFORMANCE.md).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -40,6 +42,9 @@ TEST(ArmourLayer, ThirtyTetrapodsComeToRestOnTheSlope) {
     const double x = c[0].get<double>(), z = c[2].get<double>();
     EXPECT_GT(z, 0.0) << name << " below the floor";
     EXPECT_GT(nx * x + nz * z, 0.0) << name << " below the slope plane";
+    const auto& u = b["vcom"];
+    EXPECT_LT(std::hypot(u[0].get<double>(), u[1].get<double>(), u[2].get<double>()), 0.3)
+        << name << " still moving";
     EXPECT_LT(b["added_mass"].get<double>(), 0.01 * b["mass"].get<double>()) << name;
   }
   EXPECT_EQ(units, 30);
