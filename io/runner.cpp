@@ -338,6 +338,8 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
     summary.extra["stable_time_step"] = sim.stable_dt();
     if (set.rest_kinetic_fraction > 0.0) {
+      // the threshold too, so tools reading the run need not know the scene
+      summary.extra["rest_kinetic_fraction"] = set.rest_kinetic_fraction;
       summary.extra["peak_kinetic_energy"] = peak_kinetic;
       summary.extra["peak_kinetic_energy_time"] = peak_kinetic_time;
       if (rest_time >= 0.0) summary.extra["at_rest_time"] = rest_time;

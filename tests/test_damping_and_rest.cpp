@@ -173,6 +173,7 @@ TEST(StopAtRest, ADroppedBlockStopsTheRunOnceAtRest) {
   EXPECT_LT(t_rest, 2.0);
   EXPECT_GT(t_rest, 0.1);
   EXPECT_DOUBLE_EQ(s["end_time"].get<double>(), t_rest);
+  EXPECT_DOUBLE_EQ(s["extra"]["rest_kinetic_fraction"].get<double>(), 1e-3);
   EXPECT_NEAR(peak, 1.0 * 9.81 * 0.05, 0.2 * 1.0 * 9.81 * 0.05);  // m g h of the fall
   const auto h = test::read_history(dir / "out" / "history.csv");
   const auto& t = h.at("time");

@@ -178,7 +178,7 @@ def main():
           f"{summ['wall_time_s'] / 60:.1f} min wall, "
           f"{summ['threads']} thread(s), end time {summ['end_time']:.3f} s, status {summ['status']}")
     if "at_rest_time" in extra:
-        ke_end = summ["energy"]["kinetic"] if "energy" in summ else float("nan")
+        ke_end = summ["energy"]["kinetic"]
         print(f"at rest at t = {extra['at_rest_time']:.3f} s (kinetic energy {ke_end:.4g} J, "
               f"{ke_end / extra['peak_kinetic_energy']:.2e} of its peak "
               f"{extra['peak_kinetic_energy']:.4g} J at t = {extra['peak_kinetic_energy_time']:.3f} s)")
@@ -254,8 +254,10 @@ def main():
     h = read_history(os.path.join(out, "history.csv"))
     ke = np.asarray(h["kinetic_energy"])
     ax4.semilogy(h["time"], np.maximum(ke, 1e-30), "r-", label="kinetic energy")
-    ax4.axhline(1e-3 * ke.max(), color="k", ls="--", label="1e-3 of the peak")
-    ax4.axhline(1e-4 * ke.max(), color="k", ls=":", label="1e-4 of the peak")
+    # the rest criterion, and the run's own threshold where it differs
+    thresholds = {1e-3, extra.get("rest_kinetic_fraction", 1e-3)}
+    for frac, style in zip(sorted(thresholds, reverse=True), ("--", ":")):
+        ax4.axhline(frac * ke.max(), color="k", ls=style, label=f"{frac:g} of the peak")
     ax4.set_ylim(max(ke.max() * 1e-6, 1e-30), ke.max() * 3)
     ax4.set_xlabel("time (s)")
     ax4.set_ylabel("J")
