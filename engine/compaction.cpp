@@ -8,15 +8,6 @@
 
 namespace femdem {
 
-std::vector<std::string> compaction_columns() {
-  std::vector<std::string> c;
-  for (const char* s : {"punch_displacement", "punch_force", "punch_pressure", "bottom_force",
-                        "die_normal_force", "die_axial_force", "radial_pressure", "height",
-                        "solid_volume", "relative_density", "volume_ratio", "column_strain"})
-    c.push_back(std::string("compaction.") + s);
-  return c;
-}
-
 CompactionMonitor::CompactionMonitor(const Simulation& sim, const CompactionSpec& spec)
     : spec_(spec) {
   const Model& m = sim.model();
@@ -59,13 +50,6 @@ CompactionSample CompactionMonitor::sample(const Simulation& sim) const {
   s.volume_ratio = s.solid_volume / v0_;
   s.column_strain = (h0_ - s.height) / h0_;  // the area is constant: (V0 - V) / V0 = 1 - h / h0
   return s;
-}
-
-void CompactionMonitor::values(const CompactionSample& s, double* out) {
-  const double v[] = {s.punch_displacement, s.punch_force,      s.punch_pressure,  s.bottom_force,
-                      s.die_normal_force,   s.die_axial_force,  s.radial_pressure, s.height,
-                      s.solid_volume,       s.relative_density, s.volume_ratio,    s.column_strain};
-  for (std::size_t i = 0; i < sizeof v / sizeof v[0]; ++i) out[i] = v[i];
 }
 
 LineFit fit_line(std::span<const double> x, std::span<const double> y) {

@@ -30,18 +30,12 @@ struct CompactionSample {
   double column_strain = 0.0;       // Kawakita's C = (V0 - V) / V0 of the column area x height
 };
 
-// The history.csv column names of a sample, in CompactionMonitor::values order (each prefixed
-// with "compaction.").
-std::vector<std::string> compaction_columns();
-
 class CompactionMonitor {
  public:
   // spec's indices refer to the simulation's walls and bodies; an empty powder list means every
   // body that is not fixed. Records V0 and the initial column height from the current state.
   CompactionMonitor(const Simulation& sim, const CompactionSpec& spec);
   CompactionSample sample(const Simulation& sim) const;
-  // The sample as the history columns (12 values, compaction_columns() order).
-  static void values(const CompactionSample& s, double* out);
   const CompactionSpec& spec() const { return spec_; }
   double initial_solid_volume() const { return v0_; }
 

@@ -24,11 +24,9 @@ the deformed meshes, one colour per unit, the fixed units grey), the solid-fract
 the kinetic energy against time with the rest threshold.
 """
 import argparse
-import json
 import os
 import sys
 
-import h5py
 import numpy as np
 import matplotlib
 
@@ -36,8 +34,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from history_csv import read_history  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "python"))
+import femdem  # noqa: E402  (tools/python/femdem)
 
 GRID = 0.05  # m, the point spacing of the volume count
 
@@ -52,14 +50,8 @@ def slope_frame(run_over_rise):
 
 
 def load(out):
-    with h5py.File(os.path.join(out, "results.h5"), "r", swmr=True) as f:
-        X = f["/mesh/coordinates"][:]
-        conn = f["/mesh/connectivity"][:, :4]
-        element_body = f["/mesh/element_body"][:]
-        names = [n.decode() for n in f["/mesh/body_names"][:]]
-        t = f["/frames/time"][-1]
-        x = X + f["/frames/displacement"][-1]
-    return x, conn, element_body, names, t
+    with femdem.open_results(out) as r:
+        return r.positions(-1), r.connectivity[:, :4], r.element_body, r.body_names, r.times[-1]
 
 
 def tet_volumes(x, conn):
@@ -125,12 +117,11 @@ def draw(ax, x, conn, element_body, fixed, elev, azim, title):
 
 def read_summary(out):
     """summary.json, or for a run still going (or killed) what history.csv's last row says."""
-    path = os.path.join(out, "summary.json")
-    if os.path.exists(path):
-        with open(path) as f:
-            return json.load(f)
-    h = read_history(os.path.join(out, "history.csv"))
-    names = sorted({k[: -len(".com_x")] for k in h if k.endswith(".com_x")})
+    run = femdem.Run(out)
+    if run.summary is not None:
+        return run.summary
+    h = run.history
+    names = sorted(femdem.body_names(h))
     bodies = {}
     for n in names:
         bodies[n] = {"com": [h[f"{n}.com_{c}"][-1] for c in "xyz"],
@@ -251,7 +242,7 @@ def main():
                   f"N D$_n^2$/A = {n_over * dn * dn / area:.3f}", fontsize=9)
     ax3.legend(fontsize=8)
     ax4 = fig.add_subplot(2, 2, 4)
-    h = read_history(os.path.join(out, "history.csv"))
+    h = femdem.read_history(out)
     ke = np.asarray(h["kinetic_energy"])
     ax4.semilogy(h["time"], np.maximum(ke, 1e-30), "r-", label="kinetic energy")
     # the issue's rest criterion, and the run's own threshold where it differs

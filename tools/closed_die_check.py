@@ -22,8 +22,8 @@ import os
 import sys
 
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from history_csv import read_history  # noqa: E402  (tools/history_csv.py)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "python"))
+import femdem  # noqa: E402  (tools/python/femdem)
 
 
 def analytic(strain, E, nu, sy, H):
@@ -52,7 +52,7 @@ def main():
         return 2
     out = sys.argv[1]
     E, nu, sy, H = (float(a) for a in sys.argv[2:6])
-    h = read_history(out + "/history.csv")
+    h = femdem.read_history(out + "/history.csv")
     height = h["compaction.height"]
     strain = [-math.log(x / height[0]) for x in height]
     P = h["compaction.punch_pressure"]

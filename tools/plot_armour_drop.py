@@ -18,16 +18,17 @@ strain at the end of the Mohr-Coulomb run. Elements are drawn in increasing orde
 so each point of the projection shows the largest value behind it.
 """
 import argparse
-import csv
-import json
 import os
+import sys
 
-import h5py
 import numpy as np
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "python"))
+import femdem  # noqa: E402  (tools/python/femdem)
 
 # V-Cross proportions of scenes/meshes/v_cross.stl (span S, arm width a), used to find the arm
 # tips and the core corners.
@@ -36,11 +37,8 @@ ARM = 1.26
 
 
 def read_history(out, body):
-    with open(os.path.join(out, "history.csv")) as f:
-        rows = list(csv.DictReader(f))
-    t = np.array([float(r["time"]) for r in rows])
-    s1 = np.array([float(r[body + ".max_principal_stress"]) for r in rows])
-    return t, s1
+    h = femdem.read_history(out)
+    return h["time"], h[body + ".max_principal_stress"]
 
 
 def principal_max(stress):
@@ -62,8 +60,7 @@ def arm_deflection(X, disp):
 
 
 def measure(out, body):
-    with open(os.path.join(out, "summary.json")) as f:
-        summ = json.load(f)
+    summ = femdem.read_summary(out)
     b = summ["bodies"][body]
     r = {
         "peak": b["max_principal_stress"],
@@ -75,14 +72,13 @@ def measure(out, body):
         "steps": summ["steps"],
         "wall": summ["wall_time_s"],
     }
-    with h5py.File(os.path.join(out, "results.h5"), "r", swmr=True) as f:
-        X = f["/mesh/coordinates"][:]
-        conn = f["/mesh/connectivity"][:]
-        times = f["/frames/time"][:]
-        stress = f["/frames/stress"]
-        s1 = np.array([principal_max(stress[i]) for i in range(len(times))])
-        eps = f["/frames/equivalent_plastic_strain"][:]
-        disp = f["/frames/displacement"][:]
+    with femdem.open_results(out) as f:
+        X = f.coordinates
+        conn = f.connectivity
+        times = f.times
+        s1 = np.array([principal_max(f.field("stress", i)) for i in range(len(times))])
+        eps = f.series("equivalent_plastic_strain")
+        disp = f.series("displacement")
     cent = X[conn[:, :4]].mean(axis=1)
     fi, ei = np.unravel_index(np.argmax(s1), s1.shape)
     r.update(X=X, cent=cent, times=times, s1=s1, eps=eps, frame_peak=fi,

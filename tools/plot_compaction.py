@@ -11,13 +11,12 @@ usage: tools/plot_compaction.py OUT_DIR
        and a table of the relative density at given pressures, the peak density, the share of
        the punch force the die wall carries and the Heckel fit)
 """
-import json
 import math
 import os
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from history_csv import read_history  # noqa: E402  (tools/history_csv.py)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "python"))
+import femdem  # noqa: E402  (tools/python/femdem)
 import matplotlib
 
 matplotlib.use("Agg")
@@ -59,11 +58,10 @@ def compare(dirs, png, labels):
           " | peak P (MPa) | D at peak | die wall share of punch force at peak | "
           "Heckel yield pressure (MPa), R² | wall time (min)")
     for out, label in zip(dirs, labels):
-        h = read_history(os.path.join(out, "history.csv"))
+        h = femdem.read_history(os.path.join(out, "history.csv"))
         summ = {}
         try:
-            with open(os.path.join(out, "summary.json")) as f:
-                summ = json.load(f)
+            summ = femdem.read_summary(out)
         except (OSError, ValueError):
             pass
         P, D, peak = loading_part(h)
@@ -121,14 +119,13 @@ def main():
         print(__doc__)
         return 2
     out = sys.argv[1]
-    h = read_history(os.path.join(out, "history.csv"))
+    h = femdem.read_history(os.path.join(out, "history.csv"))
     if "compaction.punch_pressure" not in h:
         print(f"{out}/history.csv has no compaction columns (the scene needs [compaction])")
         return 1
     summary = {}
     try:
-        with open(os.path.join(out, "summary.json")) as f:
-            summary = json.load(f).get("compaction", {})
+        summary = femdem.read_summary(out).get("compaction", {})
     except (OSError, ValueError):
         pass  # a run still going: plot the curve without the fit
     P = [p / 1e6 for p in h["compaction.punch_pressure"]]

@@ -36,9 +36,8 @@ import os
 import sys
 import tomllib
 
-import h5py
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import history_csv  # noqa: E402  (tools/history_csv.py)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "python"))
+import femdem  # noqa: E402  (tools/python/femdem)
 import matplotlib
 import numpy as np
 
@@ -52,18 +51,6 @@ def resolved_scene(out):
     start = text.index("# resolved scene")
     end = text.index("# end of resolved scene")
     return tomllib.loads(text[start:end])
-
-
-def read_history(out):
-    cols = history_csv.read_history(os.path.join(out, "history.csv"))
-    return {k: np.array(v) for k, v in cols.items()}
-
-
-def open_results(path):
-    try:
-        return h5py.File(path, "r")
-    except OSError:
-        return h5py.File(path, "r", swmr=True)  # a killed run: read as a SWMR reader
 
 
 def theory(material):
@@ -116,7 +103,7 @@ def main():
     bottom = next(w for w in walls if w["normal"][2] > 0.99)
     top = next(w for w in walls if w["normal"][2] < -0.99)
 
-    h = read_history(out)
+    h = femdem.read_history(out)
     A0 = math.pi * R * R
     force = 0.5 * (h[top["name"] + ".force_z"] - h[bottom["name"] + ".force_z"])
     stress = force / A0
@@ -135,13 +122,13 @@ def main():
         "theory_band_angle_deg": angle_th,
     }
 
-    f = open_results(os.path.join(out, "results.h5"))
-    X = f["/mesh/coordinates"][:]
-    conn = f["/mesh/connectivity"][:]
-    times = f["/frames/time"][:]
-    last = len(times) - 1
-    u = f["/frames/displacement"][last]
-    eqps = f["/frames/equivalent_plastic_strain"][last]
+    with femdem.open_results(out) as f:
+        X = f.coordinates
+        conn = f.connectivity
+        times = f.times
+        last = len(times) - 1
+        u = f.field("displacement", last)
+        eqps = f.field("equivalent_plastic_strain", last)
     res["frame_time"] = float(times[last])
     res["frame_strain"] = float(np.interp(times[last], h["time"], strain))
     res["max_eqps"] = float(eqps.max())

@@ -7,8 +7,8 @@ usage: tools/plot_history.py OUT_DIR     (writes OUT_DIR/energy.png, com.png, fo
 import os
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from history_csv import read_history  # noqa: E402  (tools/history_csv.py)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "python"))
+import femdem  # noqa: E402  (tools/python/femdem)
 import matplotlib
 
 matplotlib.use("Agg")
@@ -16,11 +16,11 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 
 def main():
-    if len(sys.argv) != 2:
+    if len(sys.argv) != 2 or sys.argv[1] in ("-h", "--help"):
         print(__doc__)
         return 2
     out = sys.argv[1]
-    h = read_history(os.path.join(out, "history.csv"))
+    h = femdem.read_history(os.path.join(out, "history.csv"))
     t = h["time"]
     written = []
 
@@ -41,7 +41,7 @@ def main():
     written.append("energy.png")
     plt.close(fig)
 
-    bodies = sorted({k.split(".")[0] for k in h if k.endswith(".com_x")})
+    bodies = sorted(femdem.body_names(h))
     fig, axes = plt.subplots(1, 3, figsize=(13, 4))
     for i, c in enumerate("xyz"):
         for b in bodies:
@@ -55,7 +55,7 @@ def main():
     written.append("com.png")
     plt.close(fig)
 
-    walls = sorted({k.rsplit(".", 1)[0] for k in h if k.endswith(".force_x")})
+    walls = sorted(femdem.wall_names(h))
     if walls:
         fig, ax = plt.subplots(figsize=(8, 5))
         for w in walls:

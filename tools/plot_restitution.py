@@ -29,6 +29,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "python"))
+import femdem  # noqa: E402  (tools/python/femdem)
+
 REFERENCE_CSV = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenes",
                              "ball_on_concrete_reference.csv")
 
@@ -91,8 +94,7 @@ def main():
     ap.add_argument("-o", "--out", default=None, help="the PNG (default: restitution.png next to the CSV)")
     ap.add_argument("--body", default="ball", help="the impactor (default: ball)")
     args = ap.parse_args()
-    with open(args.csv, newline="") as f:
-        rows = list(csv.DictReader(f))
+    rows = femdem.read_sweep(args.csv)
     if not rows:
         print(f"{args.csv}: no finished runs", file=sys.stderr)
         return 2

@@ -13,10 +13,12 @@ Writes into SWEEP_DIR, for the runs that completed:
   wall_time.png            wall-clock time of each run
 Exit code 4 when matplotlib is missing (femdem sweep then prints a note).
 """
-import csv
 import math
 import os
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "python"))
+import femdem  # noqa: E402  (tools/python/femdem; needs neither numpy nor matplotlib)
 
 
 def number(text):
@@ -69,23 +71,21 @@ def main():
         return 4
 
     out = args[0]
-    with open(os.path.join(out, "sweep.csv"), newline="") as f:
-        rows = list(csv.reader(f))
-    if len(rows) < 2:
+    rows = femdem.read_sweep(os.path.join(out, "sweep.csv"))
+    if not rows:
         print("plot_sweep.py: no finished runs in sweep.csv; no plots")
         return 0
-    header, data = rows[0], [r for r in rows[1:] if len(r) == len(rows[0])]
-    keys = header[: header.index("run")]
-    col = {name: i for i, name in enumerate(header)}
-    data = [r for r in data if "status" in col and r[col["status"]] == "completed"]
+    header = list(rows[0])
+    keys = femdem.varied_keys(header)
+    data = [r for r in rows if r.get("status") == "completed"]
     if not data:
         print("plot_sweep.py: no completed runs; no plots")
         return 0
 
-    xmap, xlabel, ticks = axis_positions(keys[0], [r[0] for r in data])
+    xmap, xlabel, ticks = axis_positions(keys[0], [r[keys[0]] for r in data])
     groups = {}
     for r in data:
-        groups.setdefault(tuple(r[1 : len(keys)]), []).append(r)
+        groups.setdefault(tuple(r[k] for k in keys[1:]), []).append(r)
     group_keys = list(groups)
 
     def group_label(g):
@@ -98,9 +98,9 @@ def main():
             bodies.append(name[len("bodies."): -len(".kinetic_energy")])
 
     def has_values(column, nonzero=False):
-        if column not in col:
+        if column not in header:
             return False
-        vals = [number(r[col[column]]) for r in data]
+        vals = [number(r[column]) for r in data]
         return any(v is not None and (v != 0.0 or not nonzero) for v in vals)
 
     # (file, title, y label, [(column, line label suffix, style)], log y)
@@ -135,10 +135,10 @@ def main():
         for gi, g in enumerate(group_keys):
             color = f"C{gi % 10}"
             for column, suffix, style in series:
-                if column not in col:
+                if column not in header:
                     continue
-                pts = sorted((xmap[r[0]], number(r[col[column]])) for r in groups[g]
-                             if number(r[col[column]]) is not None)
+                pts = sorted((xmap[r[keys[0]]], number(r[column])) for r in groups[g]
+                             if number(r[column]) is not None)
                 if not pts:
                     continue
                 parts = [p for p in (group_label(g), suffix) if p]

@@ -11,40 +11,36 @@ import json
 import os
 import sys
 
-import h5py
 import matplotlib
 import numpy as np
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-
-def open_results(path):
-    try:
-        return h5py.File(path, "r")
-    except OSError:
-        return h5py.File(path, "r", swmr=True)  # a killed run: read as a SWMR reader
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "python"))
+import femdem  # noqa: E402  (tools/python/femdem)
 
 
 def main():
     out = sys.argv[1]
-    f = open_results(os.path.join(out, "results.h5"))
-    X = f["/mesh/coordinates"][:]
-    times = f["/frames/time"][:]
+    f = femdem.open_results(out)
+    X = f.coordinates
+    times = f.times
     n = len(times)
     R0 = np.max(np.linalg.norm(X[:, :2], axis=1))
     base = np.where(np.abs(X[:, 2] - X[:, 2].min()) < 1e-9)[0]
     rim = base[np.abs(np.linalg.norm(X[base, :2], axis=1) - R0) < 1e-6 * R0]
     lengths, radii, eqps = [], [], []
     for k in range(n):
-        x = X + f["/frames/displacement"][k]
+        x = f.positions(k)
         lengths.append(x[:, 2].max() - x[:, 2].min())
         radii.append(np.mean(np.linalg.norm(x[rim, :2], axis=1)))
-        eqps.append(f["/frames/equivalent_plastic_strain"][k].max())
-    x = X + f["/frames/displacement"][n - 1]
+        eqps.append(f.field("equivalent_plastic_strain", k).max())
+    x = f.positions(n - 1)
     result = {"time": float(times[-1]), "length_mm": 1e3 * lengths[-1],
               "mean_base_radius_mm": 1e3 * radii[-1], "max_equivalent_plastic_strain": float(eqps[-1]),
-              "frames": n, "complete": int(f.attrs.get("complete", 0))}
+              "frames": n, "complete": int(f.complete)}
+    f.close()
 
     fig, ax = plt.subplots(figsize=(5, 7))
     for pts, label, style in [(X, "initial", "k--"), (x, f"t = {1e6 * times[-1]:.0f} us", "b-")]:

@@ -13,7 +13,6 @@ Prints the measured restitutions, the fitted V_y and the fit's residuals, and dr
 the thesis' values (V_y = 7 m/s: e(20) = 0.87, e(50) = 0.71) into a PNG next to the CSV.
 """
 import argparse
-import csv
 import math
 import os
 import re
@@ -24,6 +23,9 @@ import numpy as np
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "python"))
+import femdem  # noqa: E402  (tools/python/femdem)
 
 
 def thornton(v, vy):
@@ -60,8 +62,7 @@ def main():
     ap.add_argument("--body", default="ball")
     ap.add_argument("--out", default=None)
     args = ap.parse_args()
-    with open(args.csv, newline="") as f:
-        rows = list(csv.DictReader(f))
+    rows = femdem.read_sweep(args.csv)
     vkey = next((k for k in rows[0] if k.startswith("bodies.") and k.endswith(".velocity")), None)
     ekey = f"bodies.{args.body}.coefficient_of_restitution.com"
     if vkey is None or ekey not in rows[0]:

@@ -25,7 +25,7 @@
 
 #include "contact/nbs_broadphase.hpp"
 #include "elements/tet10_surface.hpp"
-#include "io/mesh_generators.hpp"
+#include "io/mesh/mesh_generators.hpp"
 
 using namespace femdem;
 

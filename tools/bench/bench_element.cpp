@@ -8,7 +8,7 @@
 
 #include "engine/element_kernel.hpp"
 #include "engine/simulation.hpp"
-#include "io/mesh_generators.hpp"
+#include "io/mesh/mesh_generators.hpp"
 #include "materials/von_mises.hpp"
 
 using namespace femdem;

@@ -36,7 +36,6 @@ import subprocess
 import sys
 import time
 
-import h5py
 import matplotlib
 import numpy as np
 
@@ -44,6 +43,10 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "tools", "python"))
+# (by name: run_femdem's argument `femdem` is the program's path)
+from femdem import open_results, read_summary  # noqa: E402  (tools/python/femdem)
+
 SCENE = os.path.join(ROOT, "scenes", "taylor_bar.toml")
 
 # Material and load of scenes/taylor_bar.toml (SI units).
@@ -74,8 +77,7 @@ def run_femdem(femdem, h, out_dir, end_time=None, reuse=False):
     summary_path = os.path.join(out_dir, "summary.json")
     timing_path = os.path.join(out_dir, "timing.json")
     if reuse and os.path.exists(summary_path) and os.path.exists(timing_path):
-        with open(summary_path) as f:
-            s = json.load(f)
+        s = read_summary(summary_path)
         if s.get("status") == "completed":
             with open(timing_path) as f:
                 return s, json.load(f)
@@ -85,8 +87,7 @@ def run_femdem(femdem, h, out_dir, end_time=None, reuse=False):
         cmd += ["--set", f"simulation.end_time={end_time!r}"]
     os.makedirs(out_dir, exist_ok=True)
     wall, cpu, rc = timed(cmd, log=os.path.join(out_dir, "stdout.txt"))
-    with open(summary_path) as f:
-        s = json.load(f)
+    s = read_summary(summary_path)
     t = {"wall_s": wall, "cpu_s": cpu, "returncode": rc}
     with open(timing_path, "w") as f:
         json.dump(t, f)
@@ -94,12 +95,12 @@ def run_femdem(femdem, h, out_dir, end_time=None, reuse=False):
 
 
 def femdem_final_state(out_dir):
-    with h5py.File(os.path.join(out_dir, "results.h5"), "r") as f:
-        X = f["/mesh/coordinates"][:]
-        x = X + f["/frames/displacement"][-1]
-        eqps = f["/frames/equivalent_plastic_strain"][-1]
-        t = f["/frames/time"][:]
-        lengths = [float(np.ptp(X[:, 2] + f["/frames/displacement"][k][:, 2])) for k in range(len(t))]
+    with open_results(out_dir) as f:
+        X = f.coordinates
+        x = f.positions(-1)
+        eqps = f.field("equivalent_plastic_strain", -1)
+        t = f.times
+        lengths = [float(np.ptp(X[:, 2] + f.field("displacement", k)[:, 2])) for k in range(len(t))]
     return x, float(eqps.max()), t, np.array(lengths)
 
 
@@ -366,9 +367,9 @@ def main():
     # 1. Mesh: one femdem step; it also gives femdem's fixed cost (set-up + first/last frame).
     short_dir = os.path.join(out, "femdem_short")
     s_short, t_short = run_femdem(args.femdem, args.h, short_dir, end_time=1e-9, reuse=args.reuse)
-    with h5py.File(os.path.join(short_dir, "results.h5"), "r") as f:
-        X = f["/mesh/coordinates"][:]
-        conn = f["/mesh/connectivity"][:].astype(np.int64)
+    with open_results(short_dir) as f:
+        X = f.coordinates
+        conn = f.connectivity.astype(np.int64)
     n_nodes, n_elems = len(X), len(conn)
     print(f"[calculix_taylor] mesh: {n_nodes} nodes, {n_elems} TET10", flush=True)
 

@@ -12,11 +12,14 @@ time (mesh generation, model build, stable-step factors) and peak resident memor
 (GNU time). Prints a Markdown table for docs/PERFORMANCE.md.
 """
 import argparse
-import json
 import os
 import platform
 import re
 import subprocess
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+import femdem  # noqa: E402  (tools/python/femdem)
 
 SCENE = """title = "timed run"
 [simulation]
@@ -86,8 +89,7 @@ def main():
                 print(p.stdout, p.stderr)
                 raise SystemExit(p.returncode)
             rss_kb = int(re.search(r"Maximum resident set size \(kbytes\): (\d+)", p.stderr).group(1))
-            with open(os.path.join(d, "summary.json")) as f:
-                s = json.load(f)
+            s = femdem.read_summary(d)
             ne, nn, steps = s["elements"], s["nodes"], s["steps"]
             loop = s["extra"]["loop_time_s"]
             print(f"| {ne} | {nn} | {threads} | {steps} | {loop:.2f} | {1e9 * loop / (ne * steps):.0f} "

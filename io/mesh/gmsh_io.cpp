@@ -1,0 +1,576 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "io/mesh/gmsh_io.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string_view>
+#include <unordered_map>
+
+#include "elements/tet_geometry.hpp"
+#include "engine/errors.hpp"
+#include "io/atomic_file.hpp"
+
+namespace femdem {
+
+namespace {
+
+// gmsh TET10 node i is our node kGmshToOurs[i] (and vice versa: the permutation is an
+// involution). gmsh: 4 edge 0-1, 5 edge 1-2, 6 edge 2-0, 7 edge 0-3, 8 edge 2-3, 9 edge 1-3.
+constexpr std::array<int, 10> kGmshToOurs = {0, 1, 2, 3, 4, 5, 6, 7, 9, 8};
+
+constexpr int kTypeTet4 = 4;
+constexpr int kTypeTet10 = 11;
+
+// ---------------------------------------------------------------------------------------------
+// Line-oriented reading with positions for error messages.
+
+class Reader {
+ public:
+  Reader(std::string path, std::string data) : path_(std::move(path)), data_(std::move(data)) {}
+
+  // Next line (without the end-of-line), false at end of file.
+  bool next_line() {
+    if (pos_ >= data_.size()) return false;
+    std::size_t end = data_.find('\n', pos_);
+    if (end == std::string::npos) end = data_.size();
+    line_ = std::string_view(data_).substr(pos_, end - pos_);
+    if (!line_.empty() && line_.back() == '\r') line_.remove_suffix(1);
+    pos_ = end + 1;
+    ++line_no_;
+    tok_ = 0;
+    return true;
+  }
+
+  // Next line or an error saying what was expected there.
+  void require_line(const std::string& what) {
+    if (!next_line()) fail_eof(what);
+  }
+
+  // Next non-blank line, false at end of file.
+  bool next_nonblank_line() {
+    while (next_line())
+      if (!trimmed().empty()) return true;
+    return false;
+  }
+
+  std::string_view line() const { return line_; }
+  std::string_view trimmed() const {
+    std::string_view s = line_;
+    while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+    while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
+    return s;
+  }
+  int line_no() const { return line_no_; }
+  const std::string& path() const { return path_; }
+
+  // Next whitespace-separated token of the current line; empty at its end. column() is the
+  // 1-based column of the token last returned.
+  std::string_view token() {
+    while (tok_ < line_.size() && (line_[tok_] == ' ' || line_[tok_] == '\t')) ++tok_;
+    const std::size_t start = tok_;
+    while (tok_ < line_.size() && line_[tok_] != ' ' && line_[tok_] != '\t') ++tok_;
+    col_ = static_cast<int>(start) + 1;
+    return line_.substr(start, tok_ - start);
+  }
+  bool has_more_tokens() {
+    std::size_t p = tok_;
+    while (p < line_.size() && (line_[p] == ' ' || line_[p] == '\t')) ++p;
+    return p < line_.size();
+  }
+
+  std::int64_t integer(const char* what) {
+    const std::string_view t = token();
+    if (t.empty()) fail(std::string("missing ") + what, col_);
+    std::int64_t v = 0;
+    const auto r = std::from_chars(t.data(), t.data() + t.size(), v);
+    if (r.ec != std::errc() || r.ptr != t.data() + t.size())
+      fail(std::string("expected an integer ") + what + ", got '" + std::string(t) + "'", col_);
+    return v;
+  }
+  std::int64_t count(const char* what) {
+    const std::int64_t v = integer(what);
+    if (v < 0) fail(std::string(what) + " must not be negative", col_);
+    return v;
+  }
+  double real(const char* what) {
+    const std::string_view t = token();
+    if (t.empty()) fail(std::string("missing ") + what, col_);
+    double v = 0.0;
+    const auto r = std::from_chars(t.data(), t.data() + t.size(), v);
+    if (r.ec != std::errc() || r.ptr != t.data() + t.size() || !std::isfinite(v))
+      fail(std::string("expected a finite number ") + what + ", got '" + std::string(t) + "'",
+           col_);
+    return v;
+  }
+  // An integer that may continue on the following lines (node tag lists).
+  std::int64_t integer_any_line(const char* what, const std::string& section) {
+    while (!has_more_tokens()) require_line(what + std::string(" in ") + section);
+    return integer(what);
+  }
+
+  void expect_end_of_line() {
+    if (has_more_tokens()) {
+      const std::string_view t = token();
+      fail("unexpected extra data '" + std::string(t) + "'", col_);
+    }
+  }
+  void expect_exact(std::string_view keyword) {
+    if (trimmed() != keyword)
+      fail("expected " + std::string(keyword) + ", got '" + std::string(trimmed()) + "'");
+  }
+
+  [[noreturn]] void fail(const std::string& msg, int column = 0) const {
+    throw InputError(msg, path_, line_no_, column);
+  }
+  [[noreturn]] void fail_at(const std::string& msg, int line) const {
+    throw InputError(msg, path_, line);
+  }
+  [[noreturn]] void fail_eof(const std::string& what) const {
+    throw InputError("unexpected end of file: expected " + what + " (truncated file?)", path_,
+                     line_no_ + 1);
+  }
+
+ private:
+  std::string path_;
+  std::string data_;
+  std::size_t pos_ = 0;
+  std::string_view line_;
+  int line_no_ = 0;
+  std::size_t tok_ = 0;
+  int col_ = 0;
+};
+
+struct RawElement {
+  std::int64_t tag;
+  int line;
+  int nodes;                       // 4 or 10
+  std::array<std::int64_t, 10> n;  // node TAGS, gmsh order
+};
+
+struct RawMesh {
+  std::vector<std::int64_t> node_tags;
+  std::vector<Vec3> coords;
+  int nodes_line = 0;  // line of $Nodes
+  bool have_nodes = false;
+  std::vector<RawElement> tets;
+  int elements_line = 0;  // line of $Elements
+  bool have_elements = false;
+  std::int64_t ignored = 0;
+};
+
+// Reads the node list of a tetrahedron from the current line into e.
+void read_tet_nodes(Reader& r, int type, RawElement& e) {
+  e.nodes = type == kTypeTet4 ? 4 : 10;
+  for (int i = 0; i < e.nodes; ++i) e.n[i] = r.integer("node tag of the tetrahedron");
+  r.expect_end_of_line();
+}
+
+void read_nodes_v2(Reader& r, RawMesh& m) {
+  r.require_line("the number of nodes");
+  const std::int64_t n = r.count("number of nodes");
+  r.expect_end_of_line();
+  m.node_tags.reserve(static_cast<std::size_t>(std::min<std::int64_t>(n, 1 << 26)));
+  m.coords.reserve(m.node_tags.capacity());
+  for (std::int64_t i = 0; i < n; ++i) {
+    r.require_line("node " + std::to_string(i + 1) + " of " + std::to_string(n));
+    const std::int64_t tag = r.integer("node tag");
+    Vec3 x;
+    x[0] = r.real("x");
+    x[1] = r.real("y");
+    x[2] = r.real("z");
+    r.expect_end_of_line();
+    m.node_tags.push_back(tag);
+    m.coords.push_back(x);
+  }
+  r.require_line("$EndNodes");
+  r.expect_exact("$EndNodes");
+}
+
+void read_nodes_v41(Reader& r, RawMesh& m) {
+  r.require_line("the $Nodes header");
+  const std::int64_t blocks = r.count("number of entity blocks");
+  const std::int64_t total = r.count("number of nodes");
+  r.integer("minimum node tag");
+  r.integer("maximum node tag");
+  r.expect_end_of_line();
+  const std::size_t cap = static_cast<std::size_t>(std::min<std::int64_t>(total, 1 << 26));
+  m.node_tags.reserve(cap);
+  m.coords.reserve(cap);
+  std::int64_t seen = 0;
+  for (std::int64_t b = 0; b < blocks; ++b) {
+    r.require_line("a node block header");
+    const std::int64_t dim = r.integer("entity dimension");
+    r.integer("entity tag");
+    const std::int64_t parametric = r.integer("parametric flag");
+    const std::int64_t n = r.count("number of nodes in the block");
+    r.expect_end_of_line();
+    if (dim < 0 || dim > 3) r.fail("entity dimension must be 0..3");
+    if (seen + n > total)
+      r.fail("node blocks hold more than the " + std::to_string(total) + " nodes announced");
+    const std::size_t first = m.node_tags.size();
+    for (std::int64_t i = 0; i < n; ++i) {
+      if (i == 0) r.require_line("node tags");
+      m.node_tags.push_back(r.integer_any_line("node tag", "$Nodes"));
+    }
+    if (n > 0) r.expect_end_of_line();
+    for (std::int64_t i = 0; i < n; ++i) {
+      r.require_line("coordinates of node tag " + std::to_string(m.node_tags[first + i]));
+      Vec3 x;
+      x[0] = r.real("x");
+      x[1] = r.real("y");
+      x[2] = r.real("z");
+      if (parametric) {
+        for (std::int64_t k = 0; k < dim; ++k) r.real("parametric coordinate");
+      }
+      r.expect_end_of_line();
+      m.coords.push_back(x);
+    }
+    seen += n;
+  }
+  r.require_line("$EndNodes");
+  if (seen != total && r.trimmed() == "$EndNodes")
+    r.fail("$Nodes announced " + std::to_string(total) + " nodes but its blocks hold " +
+           std::to_string(seen));
+  r.expect_exact("$EndNodes");
+}
+
+void read_elements_v2(Reader& r, RawMesh& m) {
+  r.require_line("the number of elements");
+  const std::int64_t n = r.count("number of elements");
+  r.expect_end_of_line();
+  for (std::int64_t i = 0; i < n; ++i) {
+    r.require_line("element " + std::to_string(i + 1) + " of " + std::to_string(n));
+    RawElement e{};
+    e.tag = r.integer("element tag");
+    e.line = r.line_no();
+    const std::int64_t type = r.integer("element type");
+    const std::int64_t ntags = r.count("number of tags");
+    if (type != kTypeTet4 && type != kTypeTet10) {
+      ++m.ignored;
+      continue;
+    }
+    for (std::int64_t k = 0; k < ntags; ++k) r.integer("element tag (physical/elementary)");
+    read_tet_nodes(r, static_cast<int>(type), e);
+    m.tets.push_back(e);
+  }
+  r.require_line("$EndElements");
+  r.expect_exact("$EndElements");
+}
+
+void read_elements_v41(Reader& r, RawMesh& m) {
+  r.require_line("the $Elements header");
+  const std::int64_t blocks = r.count("number of entity blocks");
+  const std::int64_t total = r.count("number of elements");
+  r.integer("minimum element tag");
+  r.integer("maximum element tag");
+  r.expect_end_of_line();
+  std::int64_t seen = 0;
+  for (std::int64_t b = 0; b < blocks; ++b) {
+    r.require_line("an element block header");
+    r.integer("entity dimension");
+    r.integer("entity tag");
+    const std::int64_t type = r.integer("element type");
+    const std::int64_t n = r.count("number of elements in the block");
+    r.expect_end_of_line();
+    if (seen + n > total)
+      r.fail("element blocks hold more than the " + std::to_string(total) + " elements announced");
+    const bool tet = type == kTypeTet4 || type == kTypeTet10;
+    for (std::int64_t i = 0; i < n; ++i) {
+      r.require_line("element " + std::to_string(i + 1) + " of a block of " + std::to_string(n));
+      if (!tet) {
+        ++m.ignored;
+        continue;
+      }
+      RawElement e{};
+      e.tag = r.integer("element tag");
+      e.line = r.line_no();
+      read_tet_nodes(r, static_cast<int>(type), e);
+      m.tets.push_back(e);
+    }
+    seen += n;
+  }
+  r.require_line("$EndElements");
+  if (seen != total && r.trimmed() == "$EndElements")
+    r.fail("$Elements announced " + std::to_string(total) + " elements but its blocks hold " +
+           std::to_string(seen));
+  r.expect_exact("$EndElements");
+}
+
+std::string read_file_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("cannot open the mesh file", path);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+Tet10Mesh assemble(const Reader& r, RawMesh& raw, GmshReadInfo& info) {
+  const std::string& path = r.path();
+  if (!raw.have_nodes) r.fail_at("no $Nodes section", r.line_no() + 1);
+  if (!raw.have_elements) r.fail_at("no $Elements section", r.line_no() + 1);
+  if (raw.tets.empty())
+    r.fail_at("no tetrahedra (element types 4 or 11) in $Elements; a volume mesh is needed",
+              raw.elements_line);
+
+  // Tag -> file node index.
+  std::unordered_map<std::int64_t, std::int32_t> index_of;
+  index_of.reserve(raw.node_tags.size() * 2);
+  for (std::size_t i = 0; i < raw.node_tags.size(); ++i) {
+    if (!index_of.emplace(raw.node_tags[i], static_cast<std::int32_t>(i)).second)
+      r.fail_at("node tag " + std::to_string(raw.node_tags[i]) + " is defined twice",
+                raw.nodes_line);
+  }
+
+  // Resolve tags, mark used nodes.
+  std::vector<std::int32_t> compact(raw.node_tags.size(), -1);
+  std::vector<std::array<std::int32_t, 10>> file_nodes(raw.tets.size());
+  for (std::size_t e = 0; e < raw.tets.size(); ++e) {
+    const RawElement& t = raw.tets[e];
+    for (int i = 0; i < t.nodes; ++i) {
+      const auto it = index_of.find(t.n[i]);
+      if (it == index_of.end())
+        r.fail_at("element " + std::to_string(t.tag) + " refers to node tag " +
+                      std::to_string(t.n[i]) + ", which is not in $Nodes",
+                  t.line);
+      file_nodes[e][i] = it->second;
+      for (int j = 0; j < i; ++j)
+        if (file_nodes[e][j] == it->second)
+          r.fail_at("element " + std::to_string(t.tag) + " uses node tag " +
+                        std::to_string(t.n[i]) + " twice",
+                    t.line);
+      compact[it->second] = 0;
+    }
+  }
+  Tet10Mesh mesh;
+  for (std::size_t i = 0; i < compact.size(); ++i) {
+    if (compact[i] < 0) {
+      ++info.unused_nodes;
+      continue;
+    }
+    compact[i] = static_cast<std::int32_t>(mesh.nodes.size());
+    mesh.nodes.push_back(raw.coords[i]);
+  }
+  if (mesh.nodes.size() + 6 * raw.tets.size() > static_cast<std::size_t>(INT32_MAX))
+    r.fail_at("mesh too large", raw.elements_line);
+
+  // Elements in our node order; TET4 elements get their mid-edge nodes below (shared with any
+  // TET10 element on the same edge).
+  mesh.elements.resize(raw.tets.size());
+  for (std::size_t e = 0; e < raw.tets.size(); ++e) {
+    const RawElement& t = raw.tets[e];
+    Tet10& el = mesh.elements[e];
+    if (t.nodes == 10) {
+      ++info.tet10;
+      for (int i = 0; i < 10; ++i) el[kGmshToOurs[i]] = compact[file_nodes[e][i]];
+    } else {
+      ++info.tet4;
+      for (int i = 0; i < 4; ++i) el[i] = compact[file_nodes[e][i]];
+      for (int i = 4; i < 10; ++i) el[i] = -1;
+    }
+  }
+  if (info.tet4 > 0) {
+    add_mid_edge_nodes(mesh);
+    info.notes.push_back(std::to_string(info.tet4) + " TET4 element(s) promoted to TET10");
+  }
+
+  // Orientation and degeneracy.
+  std::vector<double> vol(mesh.elements.size());
+  double sum_abs = 0.0;
+  std::int64_t npos = 0, nneg = 0;
+  for (std::size_t e = 0; e < mesh.elements.size(); ++e) {
+    const Tet10& el = mesh.elements[e];
+    vol[e] = tet_signed_volume(mesh.nodes[el[0]], mesh.nodes[el[1]], mesh.nodes[el[2]],
+                               mesh.nodes[el[3]]);
+    sum_abs += std::abs(vol[e]);
+  }
+  const double mean = sum_abs / static_cast<double>(vol.size());
+  for (std::size_t e = 0; e < vol.size(); ++e) {
+    if (!(std::abs(vol[e]) > 1e-10 * mean)) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "is degenerate (volume %.3g, mean element volume %.3g)",
+                    vol[e], mean);
+      r.fail_at("element " + std::to_string(raw.tets[e].tag) + " " + buf, raw.tets[e].line);
+    }
+    (vol[e] > 0 ? npos : nneg)++;
+  }
+  if (npos > 0 && nneg > 0) {
+    const bool bad_sign_negative = npos >= nneg;
+    for (std::size_t e = 0; e < vol.size(); ++e)
+      if ((vol[e] < 0) == bad_sign_negative)
+        r.fail_at("element " + std::to_string(raw.tets[e].tag) +
+                      " is inverted: its orientation is opposite to " +
+                      std::to_string(std::max(npos, nneg)) + " of the " +
+                      std::to_string(vol.size()) + " tetrahedra",
+                  raw.tets[e].line);
+  }
+  if (nneg > 0) {
+    // Swap corners 1 and 2: edges 0-1 <-> 0-2 (4 <-> 6), 1-3 <-> 2-3 (8 <-> 9).
+    for (Tet10& el : mesh.elements) {
+      std::swap(el[1], el[2]);
+      std::swap(el[4], el[6]);
+      std::swap(el[8], el[9]);
+    }
+    info.flipped = true;
+    info.notes.push_back("all tetrahedra were negatively oriented and have been flipped");
+  }
+  if (info.tet10 > 0) {
+    for (std::size_t e = 0; e < mesh.elements.size(); ++e) {
+      if (raw.tets[e].nodes != 10) continue;
+      const double sj = tet10_min_scaled_jacobian(mesh, e);
+      if (!(sj > 0.0)) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "%.3g", sj);
+        r.fail_at("element " + std::to_string(raw.tets[e].tag) +
+                      " is folded: its mid-edge nodes give a scaled Jacobian of " + buf,
+                  raw.tets[e].line);
+      }
+    }
+  }
+  if (info.unused_nodes > 0)
+    info.notes.push_back(std::to_string(info.unused_nodes) +
+                         " node(s) not used by any tetrahedron dropped");
+  if (info.ignored_elements > 0)
+    info.notes.push_back(std::to_string(info.ignored_elements) +
+                         " non-tetrahedral element(s) ignored");
+  (void)path;
+  return mesh;
+}
+
+}  // namespace
+
+Tet10Mesh read_gmsh(const std::string& path, GmshReadInfo* info_out) {
+  Reader r(path, read_file_text(path));
+  GmshReadInfo info;
+
+  if (!r.next_nonblank_line()) throw InputError("empty file; expected a gmsh MSH file", path, 1);
+  if (r.trimmed() != "$MeshFormat")
+    r.fail("not a gmsh MSH file: expected $MeshFormat on the first line");
+  r.require_line("the format line (version file-type data-size)");
+  const std::string_view version = r.token();
+  const std::string vs(version);
+  if (vs.empty()) r.fail("missing MSH version");
+  int major = 0;
+  if (vs == "4.1") {
+    major = 4;
+  } else if (vs == "2" || vs == "2.0" || vs == "2.1" || vs == "2.2") {
+    major = 2;
+  } else {
+    r.fail("unsupported MSH version '" + vs + "'; save the mesh as MSH 4.1 or 2.2 ASCII", 1);
+  }
+  info.version = vs;
+  const std::int64_t file_type = r.integer("file type");
+  if (file_type != 0)
+    r.fail(
+        "binary MSH files are not supported; save the mesh as ASCII (gmsh option "
+        "Mesh.Binary = 0)");
+  const std::int64_t data_size = r.integer("data size");
+  (void)data_size;
+  r.expect_end_of_line();
+  r.require_line("$EndMeshFormat");
+  r.expect_exact("$EndMeshFormat");
+
+  RawMesh raw;
+  while (r.next_nonblank_line()) {
+    const std::string_view head = r.trimmed();
+    if (head.empty() || head.front() != '$')
+      r.fail("expected a section header such as $Nodes, got '" + std::string(head) + "'");
+    if (head == "$Nodes") {
+      if (raw.have_nodes) r.fail("second $Nodes section");
+      raw.have_nodes = true;
+      raw.nodes_line = r.line_no();
+      if (major == 4)
+        read_nodes_v41(r, raw);
+      else
+        read_nodes_v2(r, raw);
+    } else if (head == "$Elements") {
+      if (raw.have_elements) r.fail("second $Elements section");
+      if (!raw.have_nodes) r.fail("$Elements before $Nodes");
+      raw.have_elements = true;
+      raw.elements_line = r.line_no();
+      if (major == 4)
+        read_elements_v41(r, raw);
+      else
+        read_elements_v2(r, raw);
+    } else {
+      // Skip any other section up to its end marker.
+      const std::string name(head.substr(1));
+      const std::string end = "$End" + name;
+      const int start = r.line_no();
+      bool closed = false;
+      while (r.next_line())
+        if (r.trimmed() == end) {
+          closed = true;
+          break;
+        }
+      if (!closed)
+        throw InputError("unexpected end of file: section $" + name + " opened on line " +
+                             std::to_string(start) + " has no " + end + " (truncated file?)",
+                         path, r.line_no() + 1);
+    }
+  }
+  info.ignored_elements = raw.ignored;
+  Tet10Mesh mesh = assemble(r, raw, info);
+  if (info_out) *info_out = std::move(info);
+  return mesh;
+}
+
+std::string gmsh_text(const Tet10Mesh& mesh) {
+  std::string out;
+  out.reserve(mesh.nodes.size() * 64 + mesh.elements.size() * 96 + 512);
+  char buf[64];
+  auto put_double = [&](double v) {
+    const auto r = std::to_chars(buf, buf + sizeof buf, v);
+    out.append(buf, r.ptr);
+  };
+  auto put_int = [&](std::int64_t v) {
+    const auto r = std::to_chars(buf, buf + sizeof buf, v);
+    out.append(buf, r.ptr);
+  };
+  Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();
+  if (!mesh.nodes.empty()) {
+    lo = hi = mesh.nodes[0];
+    for (const Vec3& x : mesh.nodes) {
+      lo = lo.cwiseMin(x);
+      hi = hi.cwiseMax(x);
+    }
+  }
+  const auto nn = static_cast<std::int64_t>(mesh.nodes.size());
+  const auto ne = static_cast<std::int64_t>(mesh.elements.size());
+  out += "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Entities\n0 0 0 1\n1";
+  for (int k = 0; k < 3; ++k) out += ' ', put_double(lo[k]);
+  for (int k = 0; k < 3; ++k) out += ' ', put_double(hi[k]);
+  out += " 0 0\n$EndEntities\n$Nodes\n";
+  out += "1 ", put_int(nn), out += " 1 ", put_int(nn), out += '\n';
+  out += "3 1 0 ", put_int(nn), out += '\n';
+  for (std::int64_t i = 1; i <= nn; ++i) put_int(i), out += '\n';
+  for (const Vec3& x : mesh.nodes) {
+    put_double(x[0]), out += ' ', put_double(x[1]), out += ' ', put_double(x[2]);
+    out += '\n';
+  }
+  out += "$EndNodes\n$Elements\n";
+  out += "1 ", put_int(ne), out += " 1 ", put_int(ne), out += '\n';
+  out += "3 1 11 ", put_int(ne), out += '\n';
+  for (std::int64_t e = 0; e < ne; ++e) {
+    put_int(e + 1);
+    const Tet10& el = mesh.elements[static_cast<std::size_t>(e)];
+    for (int i = 0; i < 10; ++i) out += ' ', put_int(std::int64_t{el[kGmshToOurs[i]]} + 1);
+    out += '\n';
+  }
+  out += "$EndElements\n";
+
+  return out;
+}
+
+void write_gmsh(const Tet10Mesh& mesh, const std::string& path) {
+  // Atomically, so that a killed `femdem mesh` or two sweep jobs filling the mesh cache at once
+  // never leave a half-written file under the final name.
+  write_file_atomically(path, gmsh_text(mesh));
+}
+
+}  // namespace femdem

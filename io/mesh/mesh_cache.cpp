@@ -1,0 +1,168 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "io/mesh/mesh_cache.hpp"
+
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "engine/errors.hpp"
+#include "io/mesh/gmsh_io.hpp"
+
+namespace femdem {
+
+namespace {
+
+// SHA-256 round constants: the first 32 bits of the fractional parts of the cube roots of the
+// first 64 primes (FIPS 180-4, 4.2.2).
+constexpr std::array<std::uint32_t, 64> kRound = {
+    0x428a2f98, 0x71374491, 0xb5c0fbcf, 0xe9b5dba5, 0x3956c25b, 0x59f111f1, 0x923f82a4, 0xab1c5ed5,
+    0xd807aa98, 0x12835b01, 0x243185be, 0x550c7dc3, 0x72be5d74, 0x80deb1fe, 0x9bdc06a7, 0xc19bf174,
+    0xe49b69c1, 0xefbe4786, 0x0fc19dc6, 0x240ca1cc, 0x2de92c6f, 0x4a7484aa, 0x5cb0a9dc, 0x76f988da,
+    0x983e5152, 0xa831c66d, 0xb00327c8, 0xbf597fc7, 0xc6e00bf3, 0xd5a79147, 0x06ca6351, 0x14292967,
+    0x27b70a85, 0x2e1b2138, 0x4d2c6dfc, 0x53380d13, 0x650a7354, 0x766a0abb, 0x81c2c92e, 0x92722c85,
+    0xa2bfe8a1, 0xa81a664b, 0xc24b8b70, 0xc76c51a3, 0xd192e819, 0xd6990624, 0xf40e3585, 0x106aa070,
+    0x19a4c116, 0x1e376c08, 0x2748774c, 0x34b0bcb5, 0x391c0cb3, 0x4ed8aa4a, 0x5b9cca4f, 0x682e6ff3,
+    0x748f82ee, 0x78a5636f, 0x84c87814, 0x8cc70208, 0x90befffa, 0xa4506ceb, 0xbef9a3f7, 0xc67178f2};
+
+constexpr std::uint32_t rotr(std::uint32_t x, int n) {
+  return (x >> n) | (x << (32 - n));
+}
+
+void compress(std::array<std::uint32_t, 8>& h, const unsigned char* block) {
+  std::array<std::uint32_t, 64> w;
+  for (int i = 0; i < 16; ++i)
+    w[i] = (std::uint32_t{block[4 * i]} << 24) | (std::uint32_t{block[4 * i + 1]} << 16) |
+           (std::uint32_t{block[4 * i + 2]} << 8) | std::uint32_t{block[4 * i + 3]};
+  for (int i = 16; i < 64; ++i) {
+    const std::uint32_t s0 = rotr(w[i - 15], 7) ^ rotr(w[i - 15], 18) ^ (w[i - 15] >> 3);
+    const std::uint32_t s1 = rotr(w[i - 2], 17) ^ rotr(w[i - 2], 19) ^ (w[i - 2] >> 10);
+    w[i] = w[i - 16] + s0 + w[i - 7] + s1;
+  }
+  std::uint32_t a = h[0], b = h[1], c = h[2], d = h[3], e = h[4], f = h[5], g = h[6], k = h[7];
+  for (int i = 0; i < 64; ++i) {
+    const std::uint32_t S1 = rotr(e, 6) ^ rotr(e, 11) ^ rotr(e, 25);
+    const std::uint32_t ch = (e & f) ^ (~e & g);
+    const std::uint32_t t1 = k + S1 + ch + kRound[i] + w[i];
+    const std::uint32_t S0 = rotr(a, 2) ^ rotr(a, 13) ^ rotr(a, 22);
+    const std::uint32_t maj = (a & b) ^ (a & c) ^ (b & c);
+    const std::uint32_t t2 = S0 + maj;
+    k = g;
+    g = f;
+    f = e;
+    e = d + t1;
+    d = c;
+    c = b;
+    b = a;
+    a = t1 + t2;
+  }
+  h[0] += a, h[1] += b, h[2] += c, h[3] += d, h[4] += e, h[5] += f, h[6] += g, h[7] += k;
+}
+
+std::string read_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("cannot read the surface file", path);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::string env(const char* name) {
+  const char* v = std::getenv(name);
+  return v ? std::string(v) : std::string();
+}
+
+}  // namespace
+
+std::string sha256_hex(std::string_view data) {
+  // Initial hash value: fractional parts of the square roots of the first 8 primes.
+  std::array<std::uint32_t, 8> h = {0x6a09e667, 0xbb67ae85, 0x3c6ef372, 0xa54ff53a,
+                                    0x510e527f, 0x9b05688c, 0x1f83d9ab, 0x5be0cd19};
+  const auto* p = reinterpret_cast<const unsigned char*>(data.data());
+  std::size_t n = data.size();
+  while (n >= 64) {
+    compress(h, p);
+    p += 64;
+    n -= 64;
+  }
+  // Padding: 0x80, zeros, then the message length in bits as a 64-bit big-endian number.
+  std::array<unsigned char, 128> tail{};
+  std::copy(p, p + n, tail.begin());
+  tail[n] = 0x80;
+  const std::size_t blocks = n + 1 + 8 <= 64 ? 1 : 2;
+  const std::uint64_t bits = static_cast<std::uint64_t>(data.size()) * 8;
+  for (int i = 0; i < 8; ++i)
+    tail[blocks * 64 - 1 - i] = static_cast<unsigned char>(bits >> (8 * i));
+  for (std::size_t b = 0; b < blocks; ++b) compress(h, tail.data() + 64 * b);
+  std::string hex;
+  char buf[9];
+  for (std::uint32_t v : h) {
+    std::snprintf(buf, sizeof buf, "%08x", v);
+    hex += buf;
+  }
+  return hex;
+}
+
+std::filesystem::path mesh_cache_dir() {
+  namespace fs = std::filesystem;
+  const std::string own = env("FEMDEM_MESH_CACHE");
+  if (own == "off") return {};
+  if (!own.empty()) return fs::path(own);
+  const std::string xdg = env("XDG_CACHE_HOME");
+  if (!xdg.empty()) return fs::path(xdg) / "femdem" / "meshes";
+  const std::string home = env("HOME");
+  if (!home.empty()) return fs::path(home) / ".cache" / "femdem" / "meshes";
+  return {};
+}
+
+CachedCadMesh mesh_cad_file_cached(const std::string& path, const CadMeshOptions& options) {
+  namespace fs = std::filesystem;
+  CachedCadMesh out;
+  const fs::path dir = mesh_cache_dir();
+  if (dir.empty()) {
+    out.mesh = mesh_cad_file(path, options, &out.report);
+    out.note =
+        "meshed " + path + " (mesh cache off): " + std::to_string(out.report.tet4) + " tetrahedra";
+    return out;
+  }
+  const std::string key = sha256_hex(read_bytes(path)) + "\n" + cad_options_key(options);
+  const fs::path entry = dir / (sha256_hex(key) + ".msh");
+  out.cache_file = entry.string();
+  std::error_code ec;
+  std::string stale;
+  if (fs::is_regular_file(entry, ec)) {
+    try {
+      const auto t0 = std::chrono::steady_clock::now();
+      out.mesh = read_gmsh(entry.string());
+      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      out.hit = true;
+      char buf[64];
+      std::snprintf(buf, sizeof buf, " (read in %.2f s)", s);
+      out.note = "mesh cache hit for " + path + ": " + entry.string() + buf;
+      return out;
+    } catch (const std::exception& e) {
+      // Unreadable entry (a disk problem, or someone edited it): mesh again and replace it.
+      stale = std::string("; the cached entry was unreadable (") + e.what() + ") and is replaced";
+    }
+  }
+  out.mesh = mesh_cad_file(path, options, &out.report);
+  char buf[128];
+  std::snprintf(buf, sizeof buf, ": %lld tetrahedra in %.2f s",
+                static_cast<long long>(out.report.tet4),
+                out.report.import_seconds + out.report.check_seconds + out.report.mesh_seconds);
+  out.note = "mesh cache miss for " + path + buf;
+  try {
+    fs::create_directories(dir);
+    write_gmsh(out.mesh, entry.string());
+    out.note += ", stored as " + entry.string() + stale;
+  } catch (const std::exception& e) {
+    out.cache_file.clear();
+    out.note += std::string("; warning: not cached: ") + e.what();
+  }
+  return out;
+}
+
+}  // namespace femdem

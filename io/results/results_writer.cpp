@@ -1,0 +1,449 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "io/results/results_writer.hpp"
+
+#include <fcntl.h>
+#include <hdf5.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "io/atomic_file.hpp"
+
+namespace femdem {
+
+namespace {
+
+constexpr const char* kH5Name = "results.h5";
+constexpr const char* kXdmfName = "results.xdmf";
+constexpr std::size_t kChunkBytes = std::size_t{1} << 20;  // target size of one frame chunk
+constexpr hsize_t kTimeChunk = 1024;
+
+// Owns one HDF5 identifier.
+class Handle {
+ public:
+  using Closer = herr_t (*)(hid_t);
+  Handle() = default;
+  Handle(hid_t id, Closer closer) : id_(id), closer_(closer) {}
+  Handle(Handle&& o) noexcept : id_(std::exchange(o.id_, H5I_INVALID_HID)), closer_(o.closer_) {}
+  Handle& operator=(Handle&& o) noexcept {
+    if (this != &o) {
+      reset();
+      id_ = std::exchange(o.id_, H5I_INVALID_HID);
+      closer_ = o.closer_;
+    }
+    return *this;
+  }
+  ~Handle() { reset(); }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  // Returns the close status (0 if nothing to close).
+  herr_t reset() {
+    herr_t status = 0;
+    if (id_ >= 0 && closer_) status = closer_(id_);
+    id_ = H5I_INVALID_HID;
+    return status;
+  }
+  hid_t get() const { return id_; }
+  bool valid() const { return id_ >= 0; }
+
+ private:
+  hid_t id_ = H5I_INVALID_HID;
+  Closer closer_ = nullptr;
+};
+
+std::string fmt_double(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+// One extendible per-frame dataset [frames, rows(, comps)].
+struct FrameDataset {
+  const char* name;
+  bool node_centred;
+  hsize_t rows;
+  hsize_t comps;  // 1: scalar, stored as rank 2
+  const char* xdmf_type;
+  Handle dset;
+  int rank() const { return comps > 1 ? 3 : 2; }
+};
+
+}  // namespace
+
+struct ResultsWriter::Impl {
+  std::filesystem::path folder, h5_path, xdmf_path;
+  ResultsOptions options;
+  hsize_t nodes = 0, elements = 0;
+  Handle file;
+  Handle time_dset;
+  std::vector<FrameDataset> fields;  // displacement, velocity, stress, von_mises, pressure, eps
+  std::vector<double> stress9;       // 9 per element, reused every frame
+  std::int64_t frames = 0;
+  std::string xdmf_frames;  // the Grid elements of all frames written so far
+  bool open = false;
+
+  [[noreturn]] void fail(const std::string& what) const {
+    throw std::runtime_error(h5_path.string() + ": HDF5 " + what + " failed");
+  }
+  hid_t check(hid_t id, const std::string& what) const {
+    if (id < 0) fail(what);
+    return id;
+  }
+  void check_status(herr_t status, const std::string& what) const {
+    if (status < 0) fail(what);
+  }
+
+  void write_attribute_int(hid_t obj, const char* name, int value) {
+    Handle space(check(H5Screate(H5S_SCALAR), "H5Screate"), H5Sclose);
+    Handle attr(check(H5Acreate2(obj, name, H5T_STD_I32LE, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+                      std::string("creating attribute ") + name),
+                H5Aclose);
+    check_status(H5Awrite(attr.get(), H5T_NATIVE_INT, &value),
+                 std::string("writing attribute ") + name);
+  }
+
+  void write_attribute_string(hid_t obj, const char* name, const std::string& value) {
+    Handle type(check(H5Tcopy(H5T_C_S1), "H5Tcopy"), H5Tclose);
+    check_status(H5Tset_size(type.get(), std::max<std::size_t>(1, value.size())), "H5Tset_size");
+    check_status(H5Tset_cset(type.get(), H5T_CSET_UTF8), "H5Tset_cset");
+    Handle space(check(H5Screate(H5S_SCALAR), "H5Screate"), H5Sclose);
+    Handle attr(check(H5Acreate2(obj, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
+                      std::string("creating attribute ") + name),
+                H5Aclose);
+    std::string padded = value.empty() ? std::string(1, '\0') : value;
+    check_status(H5Awrite(attr.get(), type.get(), padded.data()),
+                 std::string("writing attribute ") + name);
+  }
+
+  // A contiguous, fixed-size dataset written once.
+  void write_static(hid_t group, const char* name, hid_t file_type, hid_t mem_type, int rank,
+                    const hsize_t* dims, const void* data) {
+    Handle space(check(H5Screate_simple(rank, dims, nullptr), "H5Screate_simple"), H5Sclose);
+    Handle dset(check(H5Dcreate2(group, name, file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT,
+                                 H5P_DEFAULT),
+                      std::string("creating ") + name),
+                H5Dclose);
+    hsize_t total = 1;
+    for (int i = 0; i < rank; ++i) total *= dims[i];
+    if (total > 0) {
+      check_status(H5Dwrite(dset.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data),
+                   std::string("writing ") + name);
+    }
+  }
+
+  void create_frame_dataset(hid_t group, FrameDataset& f) {
+    const hid_t file_type = options.single_precision ? H5T_IEEE_F32LE : H5T_IEEE_F64LE;
+    const std::size_t value_size = options.single_precision ? 4 : 8;
+    const int rank = f.rank();
+    const hsize_t dims[3] = {0, f.rows, f.comps};
+    const hsize_t maxdims[3] = {H5S_UNLIMITED, f.rows, f.comps};
+    const hsize_t chunk_rows = std::clamp<hsize_t>(kChunkBytes / (f.comps * value_size), 1, f.rows);
+    const hsize_t chunk[3] = {1, chunk_rows, f.comps};
+    Handle space(check(H5Screate_simple(rank, dims, maxdims), "H5Screate_simple"), H5Sclose);
+    Handle dcpl(check(H5Pcreate(H5P_DATASET_CREATE), "H5Pcreate"), H5Pclose);
+    check_status(H5Pset_chunk(dcpl.get(), rank, chunk), "H5Pset_chunk");
+    // Every chunk is written whole (or to the end of the data): no fill values needed.
+    check_status(H5Pset_fill_time(dcpl.get(), H5D_FILL_TIME_NEVER), "H5Pset_fill_time");
+    // No chunk cache: whole chunks go straight to the file, without a copy.
+    Handle dapl(check(H5Pcreate(H5P_DATASET_ACCESS), "H5Pcreate"), H5Pclose);
+    check_status(H5Pset_chunk_cache(dapl.get(), H5D_CHUNK_CACHE_NSLOTS_DEFAULT, 0,
+                                    H5D_CHUNK_CACHE_W0_DEFAULT),
+                 "H5Pset_chunk_cache");
+    f.dset = Handle(check(H5Dcreate2(group, f.name, file_type, space.get(), H5P_DEFAULT, dcpl.get(),
+                                     dapl.get()),
+                          std::string("creating /frames/") + f.name),
+                    H5Dclose);
+  }
+
+  // Appends row `frames` of dataset `dset` (rank 1..3, fixed trailing dims) from `data`.
+  void append(hid_t dset, int rank, hsize_t rows, hsize_t comps, const double* data,
+              const char* name) {
+    const hsize_t index = static_cast<hsize_t>(frames);
+    const hsize_t extent[3] = {index + 1, rows, comps};
+    check_status(H5Dset_extent(dset, extent), std::string("extending ") + name);
+    Handle fspace(check(H5Dget_space(dset), "H5Dget_space"), H5Sclose);
+    const hsize_t start[3] = {index, 0, 0};
+    const hsize_t count[3] = {1, rows, comps};
+    check_status(H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start, nullptr, count, nullptr),
+                 "H5Sselect_hyperslab");
+    Handle mspace(check(H5Screate_simple(rank, count, nullptr), "H5Screate_simple"), H5Sclose);
+    check_status(H5Dwrite(dset, H5T_NATIVE_DOUBLE, mspace.get(), fspace.get(), H5P_DEFAULT, data),
+                 std::string("writing ") + name);
+  }
+
+  std::string xdmf_text() const {
+    std::string s;
+    s.reserve(xdmf_frames.size() + 512);
+    s += "<?xml version=\"1.0\" ?>\n";
+    s += "<!-- femdem results: ";
+    s += std::to_string(frames);
+    s += " complete frames in results.h5; geometry is the reference configuration, apply "
+         "\"Warp By Vector\" with displacement for the deformed shape -->\n";
+    s += "<Xdmf Version=\"3.0\" xmlns:xi=\"http://www.w3.org/2001/XInclude\">\n";
+    s += "  <Domain>\n";
+    s += "    <Grid Name=\"femdem\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    s += xdmf_frames;
+    s += "    </Grid>\n  </Domain>\n</Xdmf>\n";
+    return s;
+  }
+
+  void append_xdmf_frame(double time) {
+    const std::string k = std::to_string(frames - 1);
+    const std::string f = std::to_string(frames);  // declared extent: frames 0..k
+    const std::string n = std::to_string(nodes), e = std::to_string(elements);
+    const char* precision = options.single_precision ? "4" : "8";
+    std::string& s = xdmf_frames;
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%06lld", static_cast<long long>(frames - 1));
+    s += "      <Grid Name=\"";
+    s += name;
+    s += "\" GridType=\"Uniform\">\n";
+    s += "        <Time Value=\"" + fmt_double(time) + "\"/>\n";
+    s += "        <Topology TopologyType=\"Tetrahedron_10\" NumberOfElements=\"" + e + "\">\n";
+    s += "          <DataItem Dimensions=\"" + e +
+         " 10\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">results.h5:/mesh/connectivity"
+         "</DataItem>\n";
+    s += "        </Topology>\n";
+    s += "        <Geometry GeometryType=\"XYZ\">\n";
+    s += "          <DataItem Dimensions=\"" + n +
+         " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">results.h5:/mesh/coordinates"
+         "</DataItem>\n";
+    s += "        </Geometry>\n";
+    s += "        <Attribute Name=\"body\" AttributeType=\"Scalar\" Center=\"Cell\">\n";
+    s += "          <DataItem Dimensions=\"" + e +
+         "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">results.h5:/mesh/element_body"
+         "</DataItem>\n";
+    s += "        </Attribute>\n";
+    for (const FrameDataset& fd : fields) {
+      const std::string rows = std::to_string(fd.rows);
+      const bool vec = fd.comps > 1;
+      const std::string c = std::to_string(fd.comps);
+      s += "        <Attribute Name=\"";
+      s += fd.name;
+      s += "\" AttributeType=\"";
+      s += fd.xdmf_type;
+      s += "\" Center=\"";
+      s += fd.node_centred ? "Node" : "Cell";
+      s += "\">\n";
+      s += "          <DataItem ItemType=\"HyperSlab\" Dimensions=\"1 " + rows +
+           (vec ? " " + c : "") + "\" Type=\"HyperSlab\" NumberType=\"Float\" Precision=\"" +
+           precision + "\">\n";  // the Xdmf3 readers need the type on the slab too
+      s += "            <DataItem Dimensions=\"3 " + std::string(vec ? "3" : "2") +
+           "\" NumberType=\"UInt\" Precision=\"4\" Format=\"XML\">" + k +
+           (vec ? " 0 0 1 1 1 1 " : " 0 1 1 1 ") + rows + (vec ? " " + c : "") + "</DataItem>\n";
+      s += "            <DataItem Dimensions=\"" + f + " " + rows + (vec ? " " + c : "") +
+           "\" NumberType=\"Float\" Precision=\"" + precision +
+           "\" Format=\"HDF\">results.h5:/frames/" + fd.name + "</DataItem>\n";
+      s += "          </DataItem>\n";
+      s += "        </Attribute>\n";
+    }
+    s += "      </Grid>\n";
+  }
+};
+
+ResultsWriter::ResultsWriter(const std::filesystem::path& folder, const ResultsMesh& mesh,
+                             ResultsOptions options)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& m = *impl_;
+  m.folder = folder;
+  m.h5_path = folder / kH5Name;
+  m.xdmf_path = folder / kXdmfName;
+  m.options = options;
+  if (mesh.coordinates.size() % 3 != 0 || mesh.coordinates.empty()) {
+    throw std::invalid_argument("results: coordinates must be 3 per node, at least one node");
+  }
+  if (mesh.connectivity.empty()) throw std::invalid_argument("results: mesh has no elements");
+  m.nodes = mesh.coordinates.size() / 3;
+  m.elements = mesh.connectivity.size();
+  if (mesh.node_body.size() != m.nodes) {
+    throw std::invalid_argument("results: node_body must have one entry per node");
+  }
+  if (mesh.element_body.size() != m.elements) {
+    throw std::invalid_argument("results: element_body must have one entry per element");
+  }
+  for (const Tet10& t : mesh.connectivity) {
+    for (std::int32_t id : t) {
+      if (id < 0 || static_cast<hsize_t>(id) >= m.nodes) {
+        throw std::invalid_argument("results: connectivity refers to node " + std::to_string(id) +
+                                    " of " + std::to_string(m.nodes));
+      }
+    }
+  }
+
+  std::filesystem::create_directories(folder);
+  // A stale results.xdmf must never point into the new results.h5.
+  write_file_atomically(m.xdmf_path, m.xdmf_text(), /*durable=*/false);
+
+  Handle fapl(m.check(H5Pcreate(H5P_FILE_ACCESS), "H5Pcreate"), H5Pclose);
+  m.check_status(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_LATEST, H5F_LIBVER_LATEST),
+                 "H5Pset_libver_bounds");
+  m.file = Handle(m.check(H5Fcreate(m.h5_path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()),
+                          "creating the file"),
+                  H5Fclose);
+  const hid_t root = m.file.get();
+  m.write_attribute_int(root, "complete", 0);
+  m.write_attribute_int(root, "format_version", 1);
+  m.write_attribute_string(root, "format", "femdem-results");
+
+  // --- mesh ---
+  {
+    Handle g(
+        m.check(H5Gcreate2(root, "mesh", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), "creating /mesh"),
+        H5Gclose);
+    const hsize_t cdims[2] = {m.nodes, 3};
+    m.write_static(g.get(), "coordinates", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 2, cdims,
+                   mesh.coordinates.data());
+    static_assert(sizeof(Tet10) == 10 * sizeof(std::int32_t));
+    const hsize_t tdims[2] = {m.elements, 10};
+    m.write_static(g.get(), "connectivity", H5T_STD_I32LE, H5T_NATIVE_INT32, 2, tdims,
+                   mesh.connectivity.data());
+    m.write_static(g.get(), "node_body", H5T_STD_I32LE, H5T_NATIVE_INT32, 1, &m.nodes,
+                   mesh.node_body.data());
+    m.write_static(g.get(), "element_body", H5T_STD_I32LE, H5T_NATIVE_INT32, 1, &m.elements,
+                   mesh.element_body.data());
+    // Body names: fixed-length, NUL-terminated UTF-8 strings.
+    std::size_t width = 1;
+    for (const std::string& b : mesh.body_names) width = std::max(width, b.size() + 1);
+    std::vector<char> names(std::max<std::size_t>(1, width * mesh.body_names.size()), '\0');
+    for (std::size_t i = 0; i < mesh.body_names.size(); ++i) {
+      std::copy(mesh.body_names[i].begin(), mesh.body_names[i].end(), names.begin() + i * width);
+    }
+    Handle stype(m.check(H5Tcopy(H5T_C_S1), "H5Tcopy"), H5Tclose);
+    m.check_status(H5Tset_size(stype.get(), width), "H5Tset_size");
+    m.check_status(H5Tset_strpad(stype.get(), H5T_STR_NULLTERM), "H5Tset_strpad");
+    m.check_status(H5Tset_cset(stype.get(), H5T_CSET_UTF8), "H5Tset_cset");
+    const hsize_t bdims[1] = {mesh.body_names.size()};
+    m.write_static(g.get(), "body_names", stype.get(), stype.get(), 1, bdims, names.data());
+  }
+
+  // --- frames ---
+  {
+    Handle g(m.check(H5Gcreate2(root, "frames", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                     "creating /frames"),
+             H5Gclose);
+    const hsize_t dims[1] = {0}, maxdims[1] = {H5S_UNLIMITED}, chunk[1] = {kTimeChunk};
+    Handle space(m.check(H5Screate_simple(1, dims, maxdims), "H5Screate_simple"), H5Sclose);
+    Handle dcpl(m.check(H5Pcreate(H5P_DATASET_CREATE), "H5Pcreate"), H5Pclose);
+    m.check_status(H5Pset_chunk(dcpl.get(), 1, chunk), "H5Pset_chunk");
+    m.time_dset = Handle(m.check(H5Dcreate2(g.get(), "time", H5T_IEEE_F64LE, space.get(),
+                                            H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
+                                 "creating /frames/time"),
+                         H5Dclose);
+    m.fields.push_back({"displacement", true, m.nodes, 3, "Vector", {}});
+    m.fields.push_back({"velocity", true, m.nodes, 3, "Vector", {}});
+    m.fields.push_back({"stress", false, m.elements, 9, "Tensor", {}});
+    m.fields.push_back({"von_mises", false, m.elements, 1, "Scalar", {}});
+    m.fields.push_back({"pressure", false, m.elements, 1, "Scalar", {}});
+    m.fields.push_back({"equivalent_plastic_strain", false, m.elements, 1, "Scalar", {}});
+    for (FrameDataset& f : m.fields) m.create_frame_dataset(g.get(), f);
+    m.write_attribute_string(m.fields[2].dset.get(), "components", "xx xy xz yx yy yz zx zy zz");
+  }
+  m.stress9.resize(9 * m.elements);
+
+  // From here on the file stays valid whatever happens to this process.
+  m.check_status(H5Fstart_swmr_write(root), "H5Fstart_swmr_write");
+  m.open = true;
+}
+
+ResultsWriter::~ResultsWriter() {
+  try {
+    close(false);
+  } catch (...) {
+  }
+}
+
+void ResultsWriter::write_frame(double time, const FrameFields& f) {
+  Impl& m = *impl_;
+  if (!m.open) throw std::logic_error("results: write_frame after close");
+  auto need = [](std::span<const double> s, hsize_t n, const char* what) {
+    if (s.size() != n) {
+      throw std::invalid_argument(std::string("results: ") + what + " has " +
+                                  std::to_string(s.size()) + " values, expected " +
+                                  std::to_string(n));
+    }
+  };
+  need(f.displacement, 3 * m.nodes, "displacement");
+  need(f.velocity, 3 * m.nodes, "velocity");
+  need(f.stress, 6 * m.elements, "stress");
+  need(f.von_mises, m.elements, "von_mises");
+  need(f.pressure, m.elements, "pressure");
+  need(f.equivalent_plastic_strain, m.elements, "equivalent_plastic_strain");
+
+  // Symmetric (xx yy zz xy yz xz) -> full row-major 3x3.
+  const double* s6 = f.stress.data();
+  double* s9 = m.stress9.data();
+  for (hsize_t e = 0; e < m.elements; ++e, s6 += 6, s9 += 9) {
+    s9[0] = s6[0];
+    s9[1] = s6[3];
+    s9[2] = s6[5];
+    s9[3] = s6[3];
+    s9[4] = s6[1];
+    s9[5] = s6[4];
+    s9[6] = s6[5];
+    s9[7] = s6[4];
+    s9[8] = s6[2];
+  }
+  const std::array<const double*, 6> data = {
+      f.displacement.data(), f.velocity.data(), m.stress9.data(),
+      f.von_mises.data(),    f.pressure.data(), f.equivalent_plastic_strain.data()};
+  for (std::size_t i = 0; i < m.fields.size(); ++i) {
+    FrameDataset& fd = m.fields[i];
+    m.append(fd.dset.get(), fd.rank(), fd.rows, fd.comps, data[i], fd.name);
+  }
+  // The frame's data and chunk indices reach the file before /frames/time counts the frame.
+  m.check_status(H5Fflush(m.file.get(), H5F_SCOPE_LOCAL), "H5Fflush");
+  m.append(m.time_dset.get(), 1, 1, 1, &time, "time");
+  m.check_status(H5Fflush(m.file.get(), H5F_SCOPE_LOCAL), "H5Fflush");
+  ++m.frames;
+
+  m.append_xdmf_frame(time);
+  write_file_atomically(m.xdmf_path, m.xdmf_text(), /*durable=*/false);
+}
+
+void ResultsWriter::close(bool complete) {
+  Impl& m = *impl_;
+  if (!m.open) return;
+  m.open = false;
+  m.fields.clear();
+  m.time_dset.reset();
+  if (m.file.reset() < 0) m.fail("closing the file");
+  if (complete) {
+    // Attributes cannot change in SWMR mode: reopen normally to mark the run complete.
+    Handle file(m.check(H5Fopen(m.h5_path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), "reopening"),
+                H5Fclose);
+    Handle attr(m.check(H5Aopen(file.get(), "complete", H5P_DEFAULT), "opening 'complete'"),
+                H5Aclose);
+    const int one = 1;
+    m.check_status(H5Awrite(attr.get(), H5T_NATIVE_INT, &one), "writing 'complete'");
+    attr.reset();
+    if (file.reset() < 0) m.fail("closing the file");
+  }
+  // Make the finished outputs durable.
+  const int fd = ::open(m.h5_path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd >= 0) {
+    ::fsync(fd);
+    ::close(fd);
+  }
+  write_file_atomically(m.xdmf_path, m.xdmf_text(), /*durable=*/true);
+}
+
+std::int64_t ResultsWriter::frame_count() const {
+  return impl_->frames;
+}
+bool ResultsWriter::is_open() const {
+  return impl_->open;
+}
+std::filesystem::path ResultsWriter::h5_path() const {
+  return impl_->h5_path;
+}
+std::filesystem::path ResultsWriter::xdmf_path() const {
+  return impl_->xdmf_path;
+}
+
+}  // namespace femdem

@@ -1,0 +1,237 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "tools/femdem/check_command.hpp"
+
+#include <fmt/core.h>
+
+#include <cmath>
+
+#include "elements/tet_geometry.hpp"
+#include "engine/errors.hpp"
+#include "io/strain_path.hpp"
+#include "materials/material_point.hpp"
+#include "tools/femdem/exit_codes.hpp"
+#include "tools/femdem/text_format.hpp"
+
+namespace femdem {
+
+// `femdem check`: what the scene builds, without running anything.
+void print_scene_summary(const SceneFile& scene) {
+  const ModelSpec& m = scene.model;
+  const auto& s = m.simulation;
+  fmt::print("Scene     {}\n", scene.path);
+  fmt::print("Title     {}\n\n", m.title);
+
+  fmt::print("Simulation\n");
+  fmt::print("  end time          {:g} s\n", s.end_time);
+  if (s.time_step > 0.0)
+    fmt::print("  time step         {:g} s (fixed)\n", s.time_step);
+  else
+    fmt::print("  time step         automatic, {:g} x the stable step\n", s.time_step_safety);
+  fmt::print("  output interval   {:g} s (about {} frames)\n", s.output_interval,
+             static_cast<long long>(std::floor(s.end_time / s.output_interval + 1e-9)) + 1);
+  fmt::print("  history interval  {:g} s\n", s.history_interval);
+  fmt::print("  gravity           {} m/s^2\n", vec(s.gravity));
+  if (s.bulk_viscosity_linear > 0.0 || s.bulk_viscosity_quadratic > 0.0)
+    fmt::print("  bulk viscosity    linear {:g}, quadratic {:g}\n", s.bulk_viscosity_linear,
+               s.bulk_viscosity_quadratic);
+  if (s.threads == 0)
+    fmt::print("  threads           all cores\n\n");
+  else
+    fmt::print("  threads           {}\n\n", s.threads);
+
+  fmt::print("Materials ({})\n", m.materials.size());
+  for (const auto& mat : m.materials) {
+    const double cp = std::sqrt(mat.p_wave_modulus() / mat.density);
+    const double cs = std::sqrt(mat.shear_modulus() / mat.density);
+    const bool plastic = mat.model == MaterialModel::VonMises;
+    fmt::print("  {}: {}, density {:g} kg/m^3, E = {:g} Pa, nu = {:g}\n", mat.name,
+               material_model_name(mat.model), mat.density, mat.youngs_modulus,
+               mat.poisson_ratio);
+    if (mat.model == MaterialModel::MohrCoulomb ||
+        mat.model == MaterialModel::DruckerPrager) {
+      fmt::print("    cohesion {:g} Pa, friction angle {:g} deg, dilatancy angle {:g} deg\n",
+                 mat.cohesion, mat.friction_angle, mat.dilatancy_angle);
+      if (mat.model == MaterialModel::DruckerPrager)
+        fmt::print("    cone matched to Mohr-Coulomb: {}\n",
+                   drucker_prager_cone_name(mat.cone));
+      if (mat.cohesion_hardening_modulus != 0.0)
+        fmt::print("    cohesion hardening {:g} Pa, residual cohesion {:g} Pa\n",
+                   mat.cohesion_hardening_modulus, mat.residual_cohesion);
+    }
+    if (mat.model == MaterialModel::PiecewiseDruckerPrager) {
+      fmt::print("    {} pieces [A, B Pa]:", mat.pieces.size());
+      for (const auto& [a, b] : mat.pieces) fmt::print(" [{:g}, {:g}]", a, b);
+      fmt::print(", dilatancy {:g}\n", mat.pieces_dilatancy);
+    }
+    if (plastic) {
+      switch (mat.hardening) {
+        case HardeningLaw::Linear:
+          fmt::print("    yield stress {:g} Pa, linear hardening {:g} Pa\n", mat.yield_stress,
+                     mat.hardening_modulus);
+          break;
+        case HardeningLaw::Tabulated:
+          fmt::print("    tabulated hardening, {} points, yield stress {:g} Pa\n",
+                     mat.hardening_curve.size(), mat.yield_stress);
+          break;
+        case HardeningLaw::Swift:
+          fmt::print("    Swift hardening {:g} ({:g} + eps_p)^{:g} Pa, yield stress {:g} Pa\n",
+                     mat.swift_K, mat.swift_eps0, mat.swift_n, mat.yield_stress);
+          break;
+      }
+      if (mat.jc_C > 0.0)
+        fmt::print("    Johnson-Cook rate factor C = {:g}, reference rate {:g} 1/s\n", mat.jc_C,
+                   mat.jc_epsdot0);
+    }
+    fmt::print("    K = {:g} Pa, G = {:g} Pa, wave speed {:g} m/s (P), {:g} m/s (S)\n",
+               mat.bulk_modulus(), mat.shear_modulus(), cp, cs);
+  }
+  fmt::print("\n");
+
+  long long total_nodes = 0, total_elements = 0;
+  double total_mass = 0.0;
+  fmt::print("Bodies ({})\n", m.bodies.size());
+  for (const auto& b : m.bodies) {
+    const auto& mat = m.materials[static_cast<std::size_t>(b.material)];
+    const MeshQuality q = mesh_quality(b.mesh);
+    const double volume = q.total_volume;
+    const double mass = mat.density * volume;
+    Vec3 lo = b.mesh.nodes.front(), hi = b.mesh.nodes.front();
+    for (const auto& p : b.mesh.nodes) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    total_nodes += static_cast<long long>(b.mesh.nodes.size());
+    total_elements += static_cast<long long>(b.mesh.elements.size());
+    total_mass += mass;
+    const FbarMode fbar = b.fbar.value_or(default_fbar_mode(mat));
+    fmt::print("  {}: material {}, {} nodes, {} elements, F-bar {}{}\n", b.name, mat.name,
+               b.mesh.nodes.size(), b.mesh.elements.size(), to_string(fbar),
+               b.fixed ? ", fixed" : "");
+    fmt::print("    volume {:g} m^3, mass {:g} kg\n", volume, mass);
+    fmt::print("    bounding box {} to {} m\n", vec(lo), vec(hi));
+    fmt::print("    velocity {} m/s, angular velocity {} rad/s\n", vec(b.velocity),
+               vec(b.angular_velocity));
+    fmt::print("{}", indent(format_mesh_quality(q), "    "));
+  }
+  fmt::print("  total: {} nodes, {} elements, mass {:g} kg\n\n", total_nodes, total_elements,
+             total_mass);
+
+  if (!m.walls.empty()) {
+    fmt::print("Walls ({})\n", m.walls.size());
+    for (const auto& w : m.walls) {
+      fmt::print(
+          "  {}: point {}, normal {}, {}, friction {:g}, penalty factor {:g}, "
+          "damping {:g}\n",
+          w.name, vec(w.point), vec(w.normal),
+          w.velocity_history.empty()
+              ? "velocity " + vec(w.velocity) + " m/s"
+              : fmt::format("velocity history of {} points, from {} m/s at t = 0 to {} m/s "
+                            "from t = {:g} s on",
+                            w.velocity_history.size(), vec(w.velocity_history.front().velocity),
+                            vec(w.velocity_history.back().velocity),
+                            w.velocity_history.back().time),
+          w.friction, w.penalty_factor > 0.0 ? w.penalty_factor : m.contact.penalty_factor,
+          w.damping);
+      if (!w.force_history.empty())
+        fmt::print(
+            "    force-driven: mass {:g} kg, force history of {} points, {:g} N at t = 0, "
+            "{:g} N from t = {:g} s on\n",
+            w.mass, w.force_history.size(), w.force_history.front().force,
+            w.force_history.back().force, w.force_history.back().time);
+      if (w.bounded)
+        fmt::print("    acts only up to {:g} m along {}\n", w.bound_max, vec(w.bound_axis));
+    }
+    fmt::print("\n");
+  }
+  if (m.compaction) {
+    const CompactionSpec& c = *m.compaction;
+    std::string die, powder;
+    for (int wi : c.die_walls)
+      die += (die.empty() ? "" : ", ") + m.walls[static_cast<std::size_t>(wi)].name;
+    for (int bi : c.powder)
+      powder += (powder.empty() ? "" : ", ") + m.bodies[static_cast<std::size_t>(bi)].name;
+    fmt::print(
+        "Compaction\n  punch {}, bottom {}; die walls {}\n  die cross-section {:g} m^2, "
+        "perimeter {:g} m; powder: {}\n\n",
+        m.walls[static_cast<std::size_t>(c.punch)].name,
+        m.walls[static_cast<std::size_t>(c.bottom)].name, die, c.area, c.perimeter,
+        powder.empty() ? "every body that is not fixed" : powder);
+  }
+  if (!m.constraints.empty()) {
+    fmt::print("Constraints ({})\n", m.constraints.size());
+    for (const auto& c : m.constraints) {
+      std::string region;
+      switch (c.region.kind) {
+        case RegionSpec::Kind::All:
+          region = "all nodes";
+          break;
+        case RegionSpec::Kind::Box:
+          region = "nodes in the box " + vec(c.region.box_min) + " to " + vec(c.region.box_max);
+          break;
+        case RegionSpec::Kind::Plane:
+          region = "nodes on the plane through " + vec(c.region.plane_point) + " with normal " +
+                   vec(c.region.plane_normal);
+          break;
+      }
+      std::string action;
+      if (c.velocity) {
+        action = "velocity " + vec(*c.velocity) + " m/s";
+      } else {
+        action = "fix";
+        for (int i = 0; i < 3; ++i)
+          if (c.fix[static_cast<std::size_t>(i)]) action += std::string(" ") + "xyz"[i];
+      }
+      fmt::print("  {}: {}, {}\n", m.bodies[static_cast<std::size_t>(c.body)].name, region, action);
+    }
+    fmt::print("\n");
+  }
+  fmt::print("Contact\n  penalty factor {:g}, friction {:g}", m.contact.penalty_factor,
+             m.contact.friction);
+  if (m.contact.impact_damping > 0.0)
+    fmt::print(", impact damping {:g} (restitution about {:.2f} for a linear contact)",
+               m.contact.impact_damping,
+               std::exp(-M_PI * m.contact.impact_damping /
+                        std::sqrt(1.0 - m.contact.impact_damping * m.contact.impact_damping)));
+  fmt::print("\n\n");
+  fmt::print("Scene OK.\n");
+}
+
+// `femdem check SCENE --material NAME --strain-path FILE`: the stress path of one material point
+// under a prescribed deformation history, as CSV on standard output.
+int material_point(const SceneFile& scene, const std::string& name,
+                   const std::string& path_file, int substeps) {
+  const MaterialParams* mat = nullptr;
+  std::vector<std::string> names;
+  for (const auto& m : scene.model.materials) {
+    names.push_back(m.name);
+    if (m.name == name) mat = &m;
+  }
+  if (!mat) {
+    std::string all;
+    for (const auto& n : names) all += (all.empty() ? "" : ", ") + n;
+    throw InputError("no material '" + name + "' in the scene (materials: " + all + ")",
+                             scene.path, 0, 0, "--material");
+  }
+  const std::vector<F3> targets = read_strain_path(path_file);
+  const auto steps = drive_deformation(*mat, targets, substeps);
+  fmt::print(
+      "step,target,F11,F12,F13,F21,F22,F23,F31,F32,F33,sigma_xx,sigma_yy,sigma_zz,sigma_xy,"
+      "sigma_yz,sigma_xz,von_mises,pressure,eq_plastic_strain,elastic_energy,dissipation\n");
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    const auto& s = steps[i];
+    const double* q = s.sigma;
+    const double p = -(q[0] + q[1] + q[2]) / 3.0;
+    const double vm = std::sqrt(1.5 * ((q[0] + p) * (q[0] + p) + (q[1] + p) * (q[1] + p) +
+                                       (q[2] + p) * (q[2] + p) +
+                                       2.0 * (q[3] * q[3] + q[4] * q[4] + q[5] * q[5])));
+    fmt::print("{},{}", i + 1, s.segment + 1);
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) fmt::print(",{:.17g}", s.F[r][c]);
+    for (int k = 0; k < 6; ++k) fmt::print(",{:.17g}", q[k]);
+    fmt::print(",{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", vm, p, s.eps_p, s.elastic_energy,
+               s.dissipation);
+  }
+  return kExitOk;
+}
+
+}  // namespace femdem

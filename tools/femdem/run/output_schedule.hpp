@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// When a run writes a history row and a results frame, and how long its last steps are so that
+// it lands on end_time exactly. Times within 1e-9 end_time of a due time count as due, so
+// round-off in the accumulated time neither skips nor doubles an output.
+#include <cmath>
+
+namespace femdem {
+
+class OutputSchedule {
+ public:
+  OutputSchedule(double end_time, double output_interval, double history_interval)
+      : end_(end_time),
+        eps_(1e-9 * end_time),
+        frame_interval_(output_interval),
+        history_interval_(history_interval),
+        next_frame_(output_interval),
+        next_history_(history_interval) {}
+
+  double end_time() const { return end_; }
+  bool finished(double t) const { return !(t < end_ - eps_); }
+  bool history_due(double t) const { return t >= next_history_ - eps_ || finished(t); }
+  bool frame_due(double t) const { return t >= next_frame_ - eps_ || finished(t); }
+  void history_written(double t) {
+    while (next_history_ <= t + eps_) next_history_ += history_interval_;
+  }
+  void frame_written(double t) {
+    while (next_frame_ <= t + eps_) next_frame_ += frame_interval_;
+  }
+  // The largest step the run may take from t when the stable step is dt: unlimited, except
+  // that the last one or two steps split what remains rather than overshoot end_time.
+  double step_limit(double t, double dt) const {
+    const double remaining = end_ - t;
+    if (remaining >= 1.5 * dt) return HUGE_VAL;
+    return remaining > dt ? 0.5 * remaining : remaining;
+  }
+
+ private:
+  double end_, eps_;
+  double frame_interval_, history_interval_;
+  double next_frame_, next_history_;
+};
+
+}  // namespace femdem

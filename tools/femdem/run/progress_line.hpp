@@ -1,0 +1,28 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// The progress line of a run on standard output: rewritten in place on a terminal (every 0.5 s),
+// a new line every 30 s when the output goes to a file or pipe, nothing with --quiet.
+#include <chrono>
+#include <cstdint>
+
+namespace femdem {
+
+class Simulation;
+
+class ProgressLine {
+ public:
+  ProgressLine(bool quiet, double end_time);
+  void restart_clock();  // the loop starts now
+  // Cheap to call every step: looks at the clock every 16 steps.
+  void update(const Simulation& sim);
+  void clear();          // the end of a run: wipe the line on a terminal
+  void break_line();     // before an error message: end the line on a terminal
+
+ private:
+  bool quiet_, tty_;
+  double end_;
+  std::chrono::steady_clock::time_point start_, last_;
+  std::int64_t steps_at_last_ = 0;
+};
+
+}  // namespace femdem

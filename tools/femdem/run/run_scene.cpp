@@ -1,0 +1,289 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The run loop: step, observe, write on schedule, stop at the end, at rest, on a signal or when
+// the simulation diverges. What it observes and writes lives beside it: output_schedule.hpp,
+// history_sample.hpp and output_tables.hpp (the rows), the monitors (restitution, rest, peaks,
+// compaction curve), run_summary.hpp, progress_line.hpp and run_log.hpp.
+#include "tools/femdem/run/run_scene.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <optional>
+#include <sstream>
+
+#include "engine/compaction.hpp"
+#include "engine/errors.hpp"
+#include "engine/simulation.hpp"
+#include "femdem_version.hpp"
+#include "io/results/history_writer.hpp"
+#include "io/results/results_writer.hpp"
+#include "io/results/summary_writer.hpp"
+#include "tools/femdem/run/compaction_curve.hpp"
+#include "tools/femdem/run/output_schedule.hpp"
+#include "tools/femdem/run/output_tables.hpp"
+#include "tools/femdem/run/peak_monitor.hpp"
+#include "tools/femdem/run/plot_script.hpp"
+#include "tools/femdem/run/progress_line.hpp"
+#include "tools/femdem/run/rest_monitor.hpp"
+#include "tools/femdem/run/restitution_monitor.hpp"
+#include "tools/femdem/run/run_log.hpp"
+#include "tools/femdem/run/run_summary.hpp"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace femdem {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+std::atomic<int> g_stop_signal{0};
+extern "C" void on_stop_signal(int sig) {
+  g_stop_signal = sig;
+}
+
+// SIGINT and SIGTERM end the run after the current step (the handlers are restored on leaving).
+class StopSignals {
+ public:
+  StopSignals() {
+    g_stop_signal = 0;
+    old_int_ = std::signal(SIGINT, on_stop_signal);
+    old_term_ = std::signal(SIGTERM, on_stop_signal);
+  }
+  ~StopSignals() { std::signal(SIGINT, old_int_), std::signal(SIGTERM, old_term_); }
+  StopSignals(const StopSignals&) = delete;
+  StopSignals& operator=(const StopSignals&) = delete;
+  int received() const { return g_stop_signal.load(); }
+
+ private:
+  void (*old_int_)(int);
+  void (*old_term_)(int);
+};
+
+// The thread count of the run (option, else the scene's; 0: every core), set for OpenMP.
+int use_threads(int option, int scene) {
+  int threads = option >= 0 ? option : scene;
+#ifdef _OPENMP
+  if (threads <= 0) threads = omp_get_num_procs();
+  omp_set_num_threads(threads);
+#else
+  threads = 1;
+#endif
+  return threads;
+}
+
+void write_log_header(RunLog& log, const SceneFile& scene, const RunOptions& options) {
+  std::ostringstream head;
+  const std::time_t now = std::time(nullptr);
+  char date[64];
+  std::strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S", std::localtime(&now));
+  head << "femdem " << FEMDEM_VERSION << " (" << FEMDEM_GIT_REVISION << "), " << date << "\n"
+       << "command: " << options.command_line << "\n"
+       << "scene: " << scene.path << "\n\n# resolved scene\n"
+       << scene.resolved_toml << "\n# end of resolved scene\n\n";
+  log.file_only(head.str());
+}
+
+void say_model(RunLog& log, const SceneFile& scene, const Simulation& sim, int threads) {
+  const Model& m = sim.model();
+  const SimulationSettings& set = m.settings;
+  log.say("femdem " + std::string(FEMDEM_VERSION) + ": " +
+          (m.title.empty() ? scene.stem : m.title));
+  for (const auto& note : scene.notes) log.say(note);
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "%d bodies, %d nodes, %d TET10 elements, %d walls; %d thread%s",
+                static_cast<int>(m.bodies.size()), m.node_count, m.element_count,
+                static_cast<int>(m.walls.size()), threads, threads == 1 ? "" : "s");
+  log.say(buf);
+  std::snprintf(buf, sizeof buf,
+                "stable time step %.4g s, step %.4g s; end time %.4g s (about %.0f steps)",
+                sim.stable_dt(), sim.dt(), set.end_time, set.end_time / sim.dt());
+  log.say(buf);
+  if (set.time_step > 0.0 && set.time_step > sim.stable_dt())
+    log.say("warning: simulation.time_step exceeds the stable step estimate; the run may diverge");
+}
+
+// The closing lines of a completed run: rest, rate and balance, mass scaling, where to look.
+void say_outcome(RunLog& log, const Simulation& sim, const RestMonitor& rest,
+                 double wall_time_s, const std::filesystem::path& out) {
+  const Model& m = sim.model();
+  char buf[300];
+  if (rest.enabled()) {
+    if (rest.at_rest())
+      std::snprintf(buf, sizeof buf,
+                    "at rest at t = %.4g s: the kinetic energy stayed below %.3g of its peak "
+                    "(%.4g J at t = %.4g s) for %.4g s",
+                    rest.rest_time(), rest.fraction(), rest.peak(), rest.peak_time(), rest.hold());
+    else
+      std::snprintf(buf, sizeof buf,
+                    "warning: not at rest by the end time: kinetic energy %.4g J, %.3g of its "
+                    "peak (%.4g J at t = %.4g s)",
+                    sim.energies().kinetic,
+                    rest.peak() > 0.0 ? sim.energies().kinetic / rest.peak() : 0.0, rest.peak(),
+                    rest.peak_time());
+    log.say(buf);
+  }
+  std::snprintf(buf, sizeof buf,
+                "done: %lld steps in %s (%.3g element updates/s); energy balance error %.3g %%",
+                static_cast<long long>(sim.steps()), format_duration(wall_time_s).c_str(),
+                static_cast<double>(sim.steps()) * m.element_count / wall_time_s,
+                100.0 * sim.balance_error());
+  log.say(buf);
+  if (m.settings.mass_scaling_time_step > 0.0) {
+    for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+      const BodyState s = sim.body_motion(static_cast<int>(b));
+      const double fraction = s.added_mass / s.mass;
+      std::snprintf(buf, sizeof buf,
+                    "%smass scaling added %.3g kg to body '%s' (%.3g %% of its mass)",
+                    fraction > 0.01 ? "warning: " : "", s.added_mass, m.bodies[b].name.c_str(),
+                    100.0 * fraction);
+      log.say(buf);
+    }
+  }
+  log.say("results in " + out.string() + ": results.xdmf (ParaView), history.csv, summary.json");
+}
+
+void plot_compaction(const std::string& script, const std::filesystem::path& out, RunLog& log) {
+  const int code = run_plot_script(script, out, out / "run.log");
+  if (code == 0)
+    log.say("plots: compaction_curve.png, force_displacement.png, heckel.png");
+  else
+    log.say("note: no compaction plots (" + script + " exited with " + std::to_string(code) +
+            "; see run.log)");
+}
+
+}  // namespace
+
+int run_scene(const SceneFile& scene, const RunOptions& options) {
+  const auto wall_start = Clock::now();
+  ModelSpec spec = scene.model;
+  const int threads = use_threads(options.threads, spec.simulation.threads);
+  SimulationSettings& set = spec.simulation;
+  if (set.output_interval <= 0.0) set.output_interval = set.end_time / 50.0;
+  if (set.history_interval <= 0.0) set.history_interval = set.output_interval / 20.0;
+
+  // Everything that can fail on bad input happens before the first file is written.
+  Simulation sim(build_model(spec));
+  const Model& m = sim.model();
+  const double setup_time = seconds_since(wall_start);
+
+  const std::filesystem::path out = options.out_dir;
+  std::filesystem::create_directories(out);
+  // A summary from an earlier run must not sit next to this run's partial outputs.
+  std::filesystem::remove(out / "summary.json");
+  RunLog log(out / "run.log", options.quiet);
+  write_log_header(log, scene, options);
+  say_model(log, scene, sim, threads);
+
+  // outputs
+  HistoryLayout layout;
+  for (const auto& b : m.bodies) layout.bodies.push_back(b.name);
+  for (const auto& w : m.walls) layout.walls.push_back(w.name);
+  layout.body_contact = sim.body_contact().active();
+  layout.compaction = spec.compaction.has_value();
+  ResultsWriter results(out, ResultsMesh{m.X, m.conn, m.node_body, m.element_body, layout.bodies});
+  HistoryWriter history(out / "history.csv", history_columns(layout));
+  OutputSchedule schedule(set.end_time, set.output_interval, set.history_interval);
+
+  // monitors
+  std::vector<RestitutionMonitor> restitution(m.bodies.size());
+  PeakMonitor peaks(m.bodies.size());
+  RestMonitor rest(set.rest_kinetic_fraction,
+                   set.rest_hold_time > 0.0 ? set.rest_hold_time : set.output_interval);
+  std::optional<CompactionMonitor> compaction;
+  std::optional<CompactionCurve> curve;
+  if (spec.compaction) {
+    compaction.emplace(sim, *spec.compaction);
+    curve.emplace(*compaction, set.end_time / set.history_interval);
+  }
+
+  std::vector<double> disp(m.X.size()), s6, vm, pr, ep, row;
+  auto write_frame = [&] {
+    for (std::size_t i = 0; i < disp.size(); ++i) disp[i] = m.x[i] - m.X[i];
+    sim.element_stress(s6, vm, pr, ep);
+    results.write_frame(sim.time(), FrameFields{disp, m.v, s6, vm, pr, ep});
+    schedule.frame_written(sim.time());
+  };
+  HistorySample sample;
+  auto write_history = [&] {
+    take_sample(sim, sample);
+    if (compaction) {
+      const auto t0 = Clock::now();
+      sample.compaction = compaction->sample(sim);
+      curve->sample_time_s += seconds_since(t0);
+      curve->observe(*sample.compaction);
+    }
+    peaks.observe(sample);
+    rest.observe(sample.time, sample.energies.kinetic);
+    history_row(sample, row);
+    history.write_row(row);
+    schedule.history_written(sim.time());
+  };
+  auto observe_step = [&] {
+    for (std::size_t b = 0; b < m.bodies.size(); ++b)
+      restitution[b].observe(sim.body_motion(static_cast<int>(b)));
+  };
+
+  auto loop_start = Clock::now();
+  auto finish_summary = [&](RunStatus status) {
+    const RunRecord record{.sim = sim,
+                           .setup_time_s = setup_time,
+                           .loop_time_s = seconds_since(loop_start),
+                           .rest = rest,
+                           .peaks = peaks,
+                           .compaction = curve ? &*curve : nullptr};
+    const RunIdentity id{scene.path, threads, seconds_since(wall_start)};
+    const RunSummary summary = make_run_summary(record, id, restitution, status);
+    write_summary(out / "summary.json", summary);
+    return summary;
+  };
+
+  const StopSignals signals;
+  ProgressLine progress(options.quiet, set.end_time);
+  loop_start = Clock::now();
+  try {
+    // the initial state is frame 0 and history row 0 (the schedule's first due times are one
+    // interval on)
+    write_frame();
+    observe_step();
+    write_history();
+    while (!schedule.finished(sim.time())) {
+      sim.step(schedule.step_limit(sim.time(), sim.dt()));
+      observe_step();
+      if (schedule.history_due(sim.time())) write_history();
+      if (schedule.frame_due(sim.time()) || rest.at_rest()) write_frame();
+      if (signals.received() != 0 || rest.at_rest()) break;
+      progress.update(sim);
+    }
+  } catch (const InstabilityError& e) {
+    progress.break_line();
+    history.close();
+    results.close(false);
+    finish_summary(RunStatus::unstable);
+    log.error(std::string("error: the simulation became unstable: ") + e.what());
+    throw;
+  }
+  progress.clear();
+  history.close();
+  if (signals.received() != 0) {
+    results.close(false);
+    finish_summary(RunStatus::interrupted);
+    log.say("interrupted by signal " + std::to_string(signals.received()) +
+            " at t = " + std::to_string(sim.time()) + " s; the frames written so far are readable");
+    return 1;
+  }
+  results.close(true);
+  const RunSummary summary = finish_summary(RunStatus::completed);
+  say_outcome(log, sim, rest, summary.wall_time_s, out);
+  if (compaction && !options.plot_script.empty()) plot_compaction(options.plot_script, out, log);
+  return 0;
+}
+
+}  // namespace femdem
