@@ -9,7 +9,6 @@
 #include "engine/element_kernel.hpp"
 #include "engine/errors.hpp"
 #include "materials/symmetric_eigen3.hpp"
-#include "materials/von_mises.hpp"
 
 namespace femdem {
 namespace {
@@ -48,13 +47,7 @@ Simulation::Simulation(Model model) : model_(std::move(model)), body_contact_(mo
   }
   for (const MaterialParams& p : model_.materials) {
     CompiledMaterial c;
-    c.model = p.model;
-    c.elastic = ElasticModel{p.lame_lambda(), p.shear_modulus()};
-    if (p.model == MaterialModel::VonMises) c.von_mises = make_von_mises(p);
-    if (p.model == MaterialModel::DruckerPrager) c.drucker_prager = make_drucker_prager(p);
-    if (p.model == MaterialModel::MohrCoulomb) c.mohr_coulomb = make_mohr_coulomb(p);
-    if (p.model == MaterialModel::PiecewiseDruckerPrager)
-      c.piecewise_drucker_prager = make_piecewise_drucker_prager(p);
+    c.kernel = compile_material(p);
     c.wave_speed = std::sqrt(p.p_wave_modulus() / p.density);
     c.density = p.density;
     compiled_.push_back(std::move(c));
@@ -140,29 +133,13 @@ void Simulation::compute_forces(double step_dt) {
       for (int k = 0; k < 4; ++k) cJ[k] = node_J_[c[k]];
       q = elem_pressure_weight_.data() + 4 * es;
     }
-    ElementResult r;
-    switch (cm.model) {  // one well-predicted branch per element, none per Gauss point
-      case MaterialModel::Elastic:
-        r = tet10_internal_forces(xe, dN, w, cm.elastic, fbar, st, step_dt, fe, sig, cJ, q,
-                                  m.subtet_volume0[e]);
-        break;
-      case MaterialModel::VonMises:
-        r = tet10_internal_forces(xe, dN, w, cm.von_mises, fbar, st, step_dt, fe, sig, cJ, q,
-                                  m.subtet_volume0[e]);
-        break;
-      case MaterialModel::DruckerPrager:
-        r = tet10_internal_forces(xe, dN, w, cm.drucker_prager, fbar, st, step_dt, fe, sig, cJ, q,
-                                  m.subtet_volume0[e]);
-        break;
-      case MaterialModel::MohrCoulomb:
-        r = tet10_internal_forces(xe, dN, w, cm.mohr_coulomb, fbar, st, step_dt, fe, sig, cJ, q,
-                                  m.subtet_volume0[e]);
-        break;
-      case MaterialModel::PiecewiseDruckerPrager:
-        r = tet10_internal_forces(xe, dN, w, cm.piecewise_drucker_prager, fbar, st, step_dt, fe,
-                                  sig, cJ, q, m.subtet_volume0[e]);
-        break;
-    }
+    // one well-predicted branch per element (the model's kernel), none per Gauss point
+    const ElementResult r = std::visit(
+        [&](const auto& model) {
+          return tet10_internal_forces(xe, dN, w, model, fbar, st, step_dt, fe, sig, cJ, q,
+                                       m.subtet_volume0[e]);
+        },
+        cm.kernel);
     elem_energy_[e] = r.min_J > 0.0 ? r.energy : -HUGE_VAL;
     elem_dissipation_[e] = r.dissipation;
     double cd = cm.wave_speed;

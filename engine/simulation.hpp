@@ -12,10 +12,7 @@
 #include "engine/contact_patch.hpp"
 #include "engine/impact_damping.hpp"
 #include "engine/model.hpp"
-#include "materials/drucker_prager.hpp"
-#include "materials/mohr_coulomb.hpp"
-#include "materials/piecewise_drucker_prager.hpp"
-#include "materials/von_mises.hpp"
+#include "materials/material_params.hpp"
 
 namespace femdem {
 
@@ -109,12 +106,7 @@ class Simulation {
 
   // A material's return mapping, built once from its parameters.
   struct CompiledMaterial {
-    MaterialModel model = MaterialModel::Elastic;
-    ElasticModel elastic;
-    VonMises von_mises;
-    DruckerPrager drucker_prager;
-    MohrCoulomb mohr_coulomb;
-    PiecewiseDruckerPrager piecewise_drucker_prager;
+    MaterialKernel kernel;
     double wave_speed = 0.0;  // dilatational, sqrt((K + 4G/3) / rho)
     double density = 0.0;
   };

@@ -17,7 +17,7 @@
 #include <limits>
 #include <string>
 
-#include "materials/material_params.hpp"
+#include "materials/frictional_params.hpp"
 
 namespace femdem {
 
@@ -50,7 +50,7 @@ struct CohesionHardening {
 // `steepest_softening` (< 0) is the most negative H for which every return of the model still
 // has a unique multiplier (a + m k H > 0 for each of its returns, see CohesionHardening); a
 // steeper softening is a snap-back at the material point.
-inline std::string cohesion_param_error(const MaterialParams& m, double steepest_softening) {
+inline std::string cohesion_param_error(const FrictionalParams& m, double steepest_softening) {
   if (!(m.cohesion >= 0.0) || !std::isfinite(m.cohesion)) return "cohesion must be >= 0 and finite";
   if (!std::isfinite(m.cohesion_hardening_modulus))
     return "cohesion_hardening_modulus must be finite";

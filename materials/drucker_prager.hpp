@@ -27,15 +27,39 @@
 // inner one in tension: thesis test 3.2.5 with c = 15 MPa, phi = 30 gives A_I1 = 0.2309 and
 // B = 18.00 MPa (outer), 0.1650 and 12.857 MPa (inner); the printed "B = 0.4 / 0.286 MPa" are
 // misprints (notes seed002-part1 sec. 2.6).
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "materials/cohesion_hardening.hpp"
 #include "materials/finite_strain_update.hpp"
 #include "materials/hencky.hpp"
-#include "materials/material_params.hpp"
+#include "materials/material_base.hpp"
 
 namespace femdem {
+
+// Which Drucker-Prager cone matches the Mohr-Coulomb (cohesion, friction_angle) of a scene.
+enum class DruckerPragerCone { Outer, Inner, PlaneStrain, Inscribed };
+
+inline const char* drucker_prager_cone_name(DruckerPragerCone c) {
+  switch (c) {
+    case DruckerPragerCone::Outer:
+      return "outer";
+    case DruckerPragerCone::Inner:
+      return "inner";
+    case DruckerPragerCone::PlaneStrain:
+      return "plane_strain";
+    case DruckerPragerCone::Inscribed:
+      return "inscribed";
+  }
+  return "?";
+}
+
+// A Drucker-Prager material's constants as the scene gives them.
+struct DruckerPragerParams : FrictionalParams {
+  DruckerPragerCone cone = DruckerPragerCone::Outer;
+};
 
 struct DruckerPrager {
   double K = 0.0, G = 0.0;
@@ -104,11 +128,11 @@ inline void drucker_prager_cone(DruckerPragerCone cone, double angle_rad, double
   }
 }
 
-inline DruckerPrager make_drucker_prager(const MaterialParams& m) {
+inline DruckerPrager make_drucker_prager(const MaterialBase& e, const DruckerPragerParams& m) {
   constexpr double deg = 3.14159265358979323846 / 180.0;
   DruckerPrager d;
-  d.K = m.bulk_modulus();
-  d.G = m.shear_modulus();
+  d.K = e.bulk_modulus();
+  d.G = e.shear_modulus();
   drucker_prager_cone(m.cone, m.friction_angle * deg, &d.eta, &d.xi);
   double xi_psi;
   drucker_prager_cone(m.cone, m.dilatancy_angle * deg, &d.eta_bar, &xi_psi);
@@ -116,17 +140,59 @@ inline DruckerPrager make_drucker_prager(const MaterialParams& m) {
   return d;
 }
 
-inline std::string drucker_prager_param_error(const MaterialParams& m) {
+inline std::string drucker_prager_param_error(const MaterialBase& e,
+                                              const DruckerPragerParams& m) {
   if (!(m.friction_angle >= 0.0 && m.friction_angle < 90.0))
     return "friction_angle must lie in [0, 90) degrees";
   if (!(m.dilatancy_angle >= 0.0 && m.dilatancy_angle <= m.friction_angle))
     return "dilatancy_angle must lie in [0, friction_angle]";
-  const DruckerPrager d = make_drucker_prager(m);
+  const DruckerPrager d = make_drucker_prager(e, m);
   // smooth return: G + K eta eta_bar + xi^2 H > 0; apex: K + xi^2 / (eta eta_bar) H > 0
   double steepest = -(d.G + d.K * d.eta * d.eta_bar) / (d.xi * d.xi);
   if (d.eta * d.eta_bar > 0.0)
     steepest = std::fmax(steepest, -d.K * d.eta * d.eta_bar / (d.xi * d.xi));
   return cohesion_param_error(m, steepest);
 }
+
+// The scene model `drucker_prager` (docs/SCENES.md, [[materials]]).
+struct DruckerPragerMaterial {
+  static constexpr const char* name = "drucker_prager";
+  using Params = DruckerPragerParams;
+  using Kernel = DruckerPrager;
+  static std::vector<std::string> keys() {
+    std::vector<std::string> k = frictional_keys();
+    k.push_back("cone");
+    return k;
+  }
+  static std::string check(const MaterialBase& e, const Params& p) {
+    return drucker_prager_param_error(e, p);
+  }
+  static Kernel compile(const MaterialBase& e, const Params& p) {
+    return make_drucker_prager(e, p);
+  }
+  static Params read(const MaterialBase& e, MaterialKeys& k) {
+    Params m;
+    read_frictional(k, m);
+    const std::vector<std::string> cones = {"outer", "inner", "plane_strain", "inscribed"};
+    const std::string cone = k.text("cone").value_or("outer");
+    if (std::find(cones.begin(), cones.end(), cone) == cones.end())
+      k.fail("cone", "unknown cone '" + cone + "'" + k.did_you_mean(cone, cones) +
+                         "; available: outer, inner, plane_strain, inscribed (matched to "
+                         "Mohr-Coulomb in compression, tension, plane strain, or inside the whole "
+                         "hexagon)");
+    m.cone = cone == "inner"          ? DruckerPragerCone::Inner
+             : cone == "plane_strain" ? DruckerPragerCone::PlaneStrain
+             : cone == "inscribed"    ? DruckerPragerCone::Inscribed
+                                      : DruckerPragerCone::Outer;
+    k.record("cone", cone);
+    const std::string err = drucker_prager_param_error(e, m);
+    if (!err.empty()) k.fail("cohesion_hardening_modulus", err);
+    return m;
+  }
+  static std::string describe(const MaterialBase&, const Params& m) {
+    return describe_frictional(m) + "    cone matched to Mohr-Coulomb: " +
+           drucker_prager_cone_name(m.cone) + "\n" + describe_cohesion_hardening(m);
+  }
+};
 
 }  // namespace femdem

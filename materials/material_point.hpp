@@ -86,7 +86,7 @@ MaterialPointStep material_point_increment(const double F[3][3], GaussPointState
 // (a) Deformation-gradient control. Each F in `path` is reached from the previous one (the
 // first from the identity) in `substeps` increments linear in F; every increment is returned.
 // dt: time per increment (rate-dependent models only; 0 = quasi-static).
-template <class Model>
+template <PrincipalReturnModel Model>
 std::vector<MaterialPointStep> drive_deformation(const Model& model, const std::vector<F3>& path,
                                                  int substeps = 1, double dt = 0.0) {
   if (substeps < 1) throw MaterialPointError("substeps must be >= 1");
@@ -113,7 +113,7 @@ std::vector<MaterialPointStep> drive_deformation(const Model& model, const std::
 }
 
 // (b) Mixed control (see the top of the file). Every increment is returned.
-template <class Model>
+template <PrincipalReturnModel Model>
 std::vector<MaterialPointStep> drive_mixed(const Model& model, const std::vector<MixedTarget>& path,
                                            LateralControl lateral, double dt = 0.0) {
   std::vector<MaterialPointStep> out;

@@ -28,7 +28,7 @@
 
 #include "materials/cohesion_hardening.hpp"
 #include "materials/finite_strain_update.hpp"
-#include "materials/material_params.hpp"
+#include "materials/material_base.hpp"
 
 namespace femdem {
 
@@ -134,11 +134,14 @@ struct MohrCoulomb {
   }
 };
 
-inline MohrCoulomb make_mohr_coulomb(const MaterialParams& m) {
+// A Mohr-Coulomb material's constants as the scene gives them.
+struct MohrCoulombParams : FrictionalParams {};
+
+inline MohrCoulomb make_mohr_coulomb(const MaterialBase& e, const MohrCoulombParams& m) {
   constexpr double deg = 3.14159265358979323846 / 180.0;
   MohrCoulomb mc;
-  mc.K = m.bulk_modulus();
-  mc.G = m.shear_modulus();
+  mc.K = e.bulk_modulus();
+  mc.G = e.shear_modulus();
   mc.sin_phi = std::sin(m.friction_angle * deg);
   mc.cos_phi = std::cos(m.friction_angle * deg);
   mc.sin_psi = std::sin(m.dilatancy_angle * deg);
@@ -146,12 +149,12 @@ inline MohrCoulomb make_mohr_coulomb(const MaterialParams& m) {
   return mc;
 }
 
-inline std::string mohr_coulomb_param_error(const MaterialParams& m) {
+inline std::string mohr_coulomb_param_error(const MaterialBase& e, const MohrCoulombParams& m) {
   if (!(m.friction_angle >= 0.0 && m.friction_angle < 90.0))
     return "friction_angle must lie in [0, 90) degrees";
   if (!(m.dilatancy_angle >= 0.0 && m.dilatancy_angle <= m.friction_angle))
     return "dilatancy_angle must lie in [0, friction_angle]";
-  const MohrCoulomb mc = make_mohr_coulomb(m);
+  const MohrCoulomb mc = make_mohr_coulomb(e, m);
   // main plane a + 4 cos^2 H > 0; edges (a + b) + 8 cos^2 H > 0 (the sum of the two
   // multipliers); apex K + cos / (sin_psi tan) H > 0
   double d13[3], d12[3], d23[3];
@@ -166,5 +169,27 @@ inline std::string mohr_coulomb_param_error(const MaterialParams& m) {
     steepest = std::fmax(steepest, -mc.K * mc.sin_psi * mc.sin_phi / (mc.cos_phi * mc.cos_phi));
   return cohesion_param_error(m, steepest);
 }
+
+// The scene model `mohr_coulomb` (docs/SCENES.md, [[materials]]).
+struct MohrCoulombMaterial {
+  static constexpr const char* name = "mohr_coulomb";
+  using Params = MohrCoulombParams;
+  using Kernel = MohrCoulomb;
+  static std::vector<std::string> keys() { return frictional_keys(); }
+  static std::string check(const MaterialBase& e, const Params& p) {
+    return mohr_coulomb_param_error(e, p);
+  }
+  static Kernel compile(const MaterialBase& e, const Params& p) { return make_mohr_coulomb(e, p); }
+  static Params read(const MaterialBase& e, MaterialKeys& k) {
+    Params m;
+    read_frictional(k, m);
+    const std::string err = mohr_coulomb_param_error(e, m);
+    if (!err.empty()) k.fail("cohesion_hardening_modulus", err);
+    return m;
+  }
+  static std::string describe(const MaterialBase&, const Params& m) {
+    return describe_frictional(m) + describe_cohesion_hardening(m);
+  }
+};
 
 }  // namespace femdem

@@ -28,9 +28,11 @@
 #include <utility>
 #include <vector>
 
+#include "materials/drucker_prager.hpp"
 #include "materials/finite_strain_update.hpp"
 #include "materials/hencky.hpp"
-#include "materials/material_params.hpp"
+#include "materials/material_base.hpp"
+#include "materials/material_keys.hpp"
 
 namespace femdem {
 
@@ -91,8 +93,15 @@ struct PiecewiseDruckerPrager {
   }
 };
 
+// A piece-wise Drucker-Prager material's constants as the scene gives them: pieces [A, B] (B in
+// Pa), tension apex first, and the constant dilatancy A_bar of its flow potential.
+struct PiecewiseDruckerPragerParams {
+  std::vector<std::pair<double, double>> pieces;
+  double pieces_dilatancy = 0.0;
+};
+
 // Empty if the pieces of m describe a convex surface, else a message for the key `pieces`.
-inline std::string piecewise_drucker_prager_param_error(const MaterialParams& m) {
+inline std::string piecewise_drucker_prager_param_error(const PiecewiseDruckerPragerParams& m) {
   const auto& pc = m.pieces;
   if (pc.empty()) return "pieces must hold at least one [A, B] pair";
   for (std::size_t k = 0; k < pc.size(); ++k) {
@@ -127,10 +136,11 @@ inline std::string piecewise_drucker_prager_param_error(const MaterialParams& m)
   return {};
 }
 
-inline PiecewiseDruckerPrager make_piecewise_drucker_prager(const MaterialParams& m) {
+inline PiecewiseDruckerPrager make_piecewise_drucker_prager(const MaterialBase& e,
+                                                            const PiecewiseDruckerPragerParams& m) {
   PiecewiseDruckerPrager d;
-  d.K = m.bulk_modulus();
-  d.G = m.shear_modulus();
+  d.K = e.bulk_modulus();
+  d.G = e.shear_modulus();
   d.A_bar = m.pieces_dilatancy;
   for (const auto& [a, b] : m.pieces) {
     d.A.push_back(a);
@@ -139,5 +149,49 @@ inline PiecewiseDruckerPrager make_piecewise_drucker_prager(const MaterialParams
   d.prepare();
   return d;
 }
+
+// The scene model `piecewise_drucker_prager` (the thesis' sec. 5.8; docs/SCENES.md).
+struct PiecewiseDruckerPragerMaterial {
+  static constexpr const char* name = "piecewise_drucker_prager";
+  using Params = PiecewiseDruckerPragerParams;
+  using Kernel = PiecewiseDruckerPrager;
+  static std::vector<std::string> keys() { return {"pieces", "dilatancy", "dilatancy_angle"}; }
+  static std::string check(const MaterialBase&, const Params& p) {
+    return piecewise_drucker_prager_param_error(p);
+  }
+  static Kernel compile(const MaterialBase& e, const Params& p) {
+    return make_piecewise_drucker_prager(e, p);
+  }
+  // pieces [[A, B], ...] from the tension apex to high pressure, and a constant dilatancy (A_bar
+  // directly, or from an angle with the outer cone's formula).
+  static Params read(const MaterialBase&, MaterialKeys& k) {
+    Params m;
+    if (!k.has("pieces")) k.fail("pieces", "is required for model 'piecewise_drucker_prager'");
+    m.pieces = k.pairs("pieces", "must be a non-empty array of [A, B] pairs (B in Pa)",
+                       "each piece must be [A, B] (two numbers, B in Pa)");
+    if (k.has("dilatancy") && k.has("dilatancy_angle"))
+      k.fail("dilatancy_angle", "give either 'dilatancy' (A_bar) or 'dilatancy_angle', not both");
+    if (k.has("dilatancy_angle")) {
+      const double psi = k.number("dilatancy_angle", 0.0);
+      if (!(psi >= 0.0 && psi < 90.0))
+        k.fail("dilatancy_angle", "must lie in [0, 90) degrees, got " + format_shortest(psi));
+      double xi;
+      drucker_prager_cone(DruckerPragerCone::Outer, psi * 3.14159265358979323846 / 180.0,
+                          &m.pieces_dilatancy, &xi);
+    } else {
+      m.pieces_dilatancy = k.number("dilatancy", 0.0);
+    }
+    k.record("pieces", m.pieces);
+    k.record("dilatancy", m.pieces_dilatancy);
+    const std::string err = piecewise_drucker_prager_param_error(m);
+    if (!err.empty()) k.fail(err.rfind("dilatancy", 0) == 0 ? "dilatancy" : "pieces", err);
+    return m;
+  }
+  static std::string describe(const MaterialBase&, const Params& m) {
+    std::string s = "    " + std::to_string(m.pieces.size()) + " pieces [A, B Pa]:";
+    for (const auto& [a, b] : m.pieces) s += " [" + format_g(a) + ", " + format_g(b) + "]";
+    return s + ", dilatancy " + format_g(m.pieces_dilatancy) + "\n";
+  }
+};
 
 }  // namespace femdem

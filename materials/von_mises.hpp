@@ -32,9 +32,30 @@
 #include <vector>
 
 #include "materials/finite_strain_update.hpp"
-#include "materials/material_params.hpp"
+#include "materials/material_base.hpp"
+#include "materials/material_keys.hpp"
 
 namespace femdem {
+
+// The hardening law of a scene's von Mises material, picked by its keys: hardening_modulus (or
+// none) -> Linear, hardening_curve -> Tabulated, swift_k -> Swift.
+enum class HardeningLaw { Linear, Tabulated, Swift };
+
+// A von Mises material's constants as the scene gives them (stresses in Pa).
+struct VonMisesParams {
+  HardeningLaw hardening = HardeningLaw::Linear;
+  double yield_stress = 0.0;       // initial yield stress sigma_y0 (linear law)
+  double hardening_modulus = 0.0;  // H: sigma_y = sigma_y0 + H eps_p (linear law)
+  // [eq_plastic_strain, stress] points, eps_p strictly increasing from 0; piece-wise linear,
+  // constant beyond the last point (tabulated law)
+  std::vector<std::pair<double, double>> hardening_curve;
+  double swift_K = 0.0;     // Swift sigma_y = K (eps0 + eps_p)^n
+  double swift_eps0 = 0.0;  // > 0
+  double swift_n = 0.0;     // >= 0
+  // Johnson-Cook rate factor 1 + C ln(max(1, epsdot_p / epsdot0)); C = 0 switches it off
+  double jc_C = 0.0;
+  double jc_epsdot0 = 1.0;  // 1/s
+};
 
 struct VonMises {
   double lambda = 0.0;  // Lame lambda
@@ -168,7 +189,7 @@ struct VonMises {
 };
 
 // Empty if the von Mises constants in m are usable, else a message naming the offending key.
-inline std::string von_mises_param_error(const MaterialParams& m) {
+inline std::string von_mises_param_error(const VonMisesParams& m) {
   auto finite = [](double x) { return std::isfinite(x); };
   switch (m.hardening) {
     case HardeningLaw::Linear:
@@ -206,10 +227,10 @@ inline std::string von_mises_param_error(const MaterialParams& m) {
 }
 
 // The return-mapping model of a von Mises material (call von_mises_param_error first).
-inline VonMises make_von_mises(const MaterialParams& m) {
+inline VonMises make_von_mises(const MaterialBase& e, const VonMisesParams& m) {
   VonMises v;
-  v.lambda = m.lame_lambda();
-  v.G = m.shear_modulus();
+  v.lambda = e.lame_lambda();
+  v.G = e.shear_modulus();
   v.law = m.hardening;
   v.yield_stress = m.yield_stress;
   v.hardening_modulus = m.hardening_modulus;
@@ -221,5 +242,95 @@ inline VonMises make_von_mises(const MaterialParams& m) {
   v.jc_epsdot0 = m.jc_epsdot0;
   return v;
 }
+
+// The scene model `von_mises` (docs/SCENES.md, [[materials]]).
+struct VonMisesMaterial {
+  static constexpr const char* name = "von_mises";
+  using Params = VonMisesParams;
+  using Kernel = VonMises;
+  static std::vector<std::string> keys() {
+    return {"yield_stress", "hardening_modulus", "hardening_curve",      "swift_k",
+            "swift_eps0",   "swift_n",           "rate_coefficient", "reference_strain_rate"};
+  }
+  static std::string check(const MaterialBase&, const Params& p) {
+    return von_mises_param_error(p);
+  }
+  static Kernel compile(const MaterialBase& e, const Params& p) { return make_von_mises(e, p); }
+
+  // Linear (hardening_modulus), a tabulated curve (hardening_curve), or Swift's power law
+  // (swift_k, swift_eps0, swift_n); an optional Johnson-Cook rate factor.
+  static Params read(const MaterialBase&, MaterialKeys& k) {
+    Params m;
+    const bool has_curve = k.has("hardening_curve");
+    const bool has_swift = k.has("swift_k") || k.has("swift_eps0") || k.has("swift_n");
+    const bool has_linear = k.has("hardening_modulus");
+    if (int(has_curve) + int(has_swift) + int(has_linear) > 1)
+      k.fail_entry(
+          "give one hardening law: 'hardening_modulus' (linear), 'hardening_curve' (tabulated) "
+          "or 'swift_k', 'swift_eps0', 'swift_n' (power law)");
+    if (has_curve) {
+      m.hardening = HardeningLaw::Tabulated;
+      m.hardening_curve =
+          k.pairs("hardening_curve",
+                  "must be a non-empty array of [equivalent_plastic_strain, stress] pairs",
+                  "each point must be [equivalent_plastic_strain, stress] (two numbers)");
+      k.record("hardening_curve", m.hardening_curve);
+      if (k.has("yield_stress"))
+        k.fail("yield_stress", "is given by the first point of 'hardening_curve'; remove one of them");
+      m.yield_stress = m.hardening_curve.front().second;
+    } else if (has_swift) {
+      m.hardening = HardeningLaw::Swift;
+      m.swift_K = k.positive("swift_k");
+      m.swift_eps0 = k.positive("swift_eps0");
+      m.swift_n = k.positive("swift_n");
+      m.yield_stress = m.swift_K * std::pow(m.swift_eps0, m.swift_n);
+      if (k.has("yield_stress"))
+        k.fail("yield_stress", "is swift_k * swift_eps0^swift_n for the Swift law; remove it");
+      k.record("swift_k", m.swift_K);
+      k.record("swift_eps0", m.swift_eps0);
+      k.record("swift_n", m.swift_n);
+    } else {
+      m.hardening = HardeningLaw::Linear;
+      m.yield_stress = k.positive("yield_stress");
+      m.hardening_modulus = k.number("hardening_modulus", 0.0);
+      k.record("yield_stress", m.yield_stress);
+      k.record("hardening_modulus", m.hardening_modulus);
+    }
+    if (k.has("rate_coefficient") || k.has("reference_strain_rate")) {
+      m.jc_C = k.number("rate_coefficient", 0.0);
+      if (m.jc_C < 0.0) k.fail("rate_coefficient", "must be >= 0, got " + format_shortest(m.jc_C));
+      m.jc_epsdot0 = k.positive("reference_strain_rate", 1.0);
+      k.record("rate_coefficient", m.jc_C);
+      k.record("reference_strain_rate", m.jc_epsdot0);
+    }
+    const std::string err = von_mises_param_error(m);
+    if (!err.empty()) k.fail_entry(err);
+    return m;
+  }
+
+  // The lines `femdem check` prints for the model (each indented by four spaces).
+  static std::string describe(const MaterialBase&, const Params& m) {
+    std::string s;
+    switch (m.hardening) {
+      case HardeningLaw::Linear:
+        s = "    yield stress " + format_g(m.yield_stress) + " Pa, linear hardening " +
+            format_g(m.hardening_modulus) + " Pa\n";
+        break;
+      case HardeningLaw::Tabulated:
+        s = "    tabulated hardening, " + std::to_string(m.hardening_curve.size()) +
+            " points, yield stress " + format_g(m.yield_stress) + " Pa\n";
+        break;
+      case HardeningLaw::Swift:
+        s = "    Swift hardening " + format_g(m.swift_K) + " (" + format_g(m.swift_eps0) +
+            " + eps_p)^" + format_g(m.swift_n) + " Pa, yield stress " + format_g(m.yield_stress) +
+            " Pa\n";
+        break;
+    }
+    if (m.jc_C > 0.0)
+      s += "    Johnson-Cook rate factor C = " + format_g(m.jc_C) + ", reference rate " +
+           format_g(m.jc_epsdot0) + " 1/s\n";
+    return s;
+  }
+};
 
 }  // namespace femdem

@@ -26,11 +26,10 @@ CubeResult plastic_cube(int cells, FbarMode fbar) {
   ModelSpec s;
   MaterialParams mat;
   mat.name = "soft";
-  mat.model = MaterialModel::VonMises;
   mat.density = 1000.0;
   mat.youngs_modulus = 30e9;
   mat.poisson_ratio = 0.3;
-  mat.yield_stress = 0.4e6;
+  mat.model.emplace<VonMisesParams>().yield_stress = 0.4e6;
   s.materials.push_back(mat);
   BodySpec b;
   b.name = "cube";

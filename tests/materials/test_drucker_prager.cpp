@@ -20,19 +20,21 @@
 #include "materials/material_point.hpp"
 #include "materials/von_mises.hpp"
 #include "support/principal_stress.hpp"
+#include "support/test_material.hpp"
 
 using namespace femdem;
 using femdem::test::principal_sorted;
 
 namespace {
 
+using DpMaterial = TestMaterial<DruckerPragerParams>;
+
 constexpr double kMPa = 1e6;
 constexpr double kDeg = M_PI / 180.0;
 
-MaterialParams thesis_dp(DruckerPragerCone cone, double psi = 30.0) {
-  MaterialParams p;
+DpMaterial thesis_dp(DruckerPragerCone cone, double psi = 30.0) {
+  DpMaterial p;
   p.name = "dp";
-  p.model = MaterialModel::DruckerPrager;
   p.density = 2500.0;
   p.youngs_modulus = 35e9;
   p.poisson_ratio = 0.15;
@@ -70,7 +72,7 @@ TEST(DruckerPragerCones, MatchTheThesisConstants) {
 // Thesis 3.2.5, compression with the outer cone: the Mohr-Coulomb yield point 110.42 / 19.49 MPa
 // and line sigma_a = 51.96 + 3 sigma_r.
 TEST(DruckerPragerUniaxialStrain, OuterConeCompressionMatchesMohrCoulomb) {
-  const MaterialParams mat = thesis_dp(DruckerPragerCone::Outer);
+  const DpMaterial mat = thesis_dp(DruckerPragerCone::Outer);
   const auto path = drive_mixed(mat, {{-6e-3, 0.0, 6000}}, LateralControl::ZeroStrain);
   std::size_t first = 0;
   while (!path[first].yielded) ++first;
@@ -90,7 +92,7 @@ TEST(DruckerPragerUniaxialStrain, OuterConeCompressionMatchesMohrCoulomb) {
 // Thesis 3.2.5, tension with the inner cone: yield 18.40 / 3.25 MPa, line 17.32 + sigma_r / 3,
 // apex 25.98 MPa.
 TEST(DruckerPragerUniaxialStrain, InnerConeTensionReachesApex) {
-  const MaterialParams mat = thesis_dp(DruckerPragerCone::Inner);
+  const DpMaterial mat = thesis_dp(DruckerPragerCone::Inner);
   const auto path = drive_mixed(mat, {{5e-3, 0.0, 5000}}, LateralControl::ZeroStrain);
   std::size_t first = 0;
   while (!path[first].yielded) ++first;
@@ -122,11 +124,11 @@ TEST(DruckerPragerReturn, LandsOnConeAndDissipates) {
         Case{DruckerPragerCone::PlaneStrain, 0, 0, 0},
         Case{DruckerPragerCone::Inscribed, 15, 3e9, 0},
         Case{DruckerPragerCone::Outer, 15, -2e9, 4e6}}) {
-    MaterialParams mat = thesis_dp(cs.cone, cs.psi);
+    DpMaterial mat = thesis_dp(cs.cone, cs.psi);
     mat.cohesion_hardening_modulus = cs.H;
     mat.residual_cohesion = cs.residual;
-    ASSERT_EQ(drucker_prager_param_error(mat), "");
-    const DruckerPrager dp = make_drucker_prager(mat);
+    ASSERT_EQ(drucker_prager_param_error(mat, mat), "");
+    const DruckerPrager dp = make_drucker_prager(mat, mat);
     femdem::test::TrialStrains gen;
     int smooth = 0, apex = 0;
     for (int n = 0; n < 20000; ++n) {
@@ -159,13 +161,12 @@ TEST(DruckerPragerReturn, LandsOnConeAndDissipates) {
 
 // With friction angle 0 the cone is the von Mises cylinder with sigma_y = sqrt3 xi c.
 TEST(DruckerPragerReturn, ZeroFrictionAngleIsVonMises) {
-  MaterialParams mat = thesis_dp(DruckerPragerCone::Outer, 0.0);
+  DpMaterial mat = thesis_dp(DruckerPragerCone::Outer, 0.0);
   mat.friction_angle = 0.0;
-  const DruckerPrager dp = make_drucker_prager(mat);
-  MaterialParams vmp = mat;
-  vmp.model = MaterialModel::VonMises;
+  const DruckerPrager dp = make_drucker_prager(mat, mat);
+  VonMisesParams vmp;
   vmp.yield_stress = std::sqrt(3.0) * dp.xi * mat.cohesion;
-  const VonMises vm = make_von_mises(vmp);
+  const VonMises vm = make_von_mises(mat, vmp);
   femdem::test::TrialStrains gen;
   for (int n = 0; n < 2000; ++n) {
     const auto e = gen.next(5e-3);

@@ -22,19 +22,21 @@
 #include "materials/material_point.hpp"
 #include "materials/mohr_coulomb.hpp"
 #include "support/principal_stress.hpp"
+#include "support/test_material.hpp"
 
 using namespace femdem;
 using femdem::test::principal_sorted;
 
 namespace {
 
+using McMaterial = TestMaterial<MohrCoulombParams>;
+
 constexpr double kMPa = 1e6;
 constexpr double kDeg = M_PI / 180.0;
 
-MaterialParams thesis_mc(double psi = 30.0) {
-  MaterialParams p;
+McMaterial thesis_mc(double psi = 30.0) {
+  McMaterial p;
   p.name = "mc";
-  p.model = MaterialModel::MohrCoulomb;
   p.density = 2500.0;
   p.youngs_modulus = 35e9;
   p.poisson_ratio = 0.15;
@@ -64,7 +66,7 @@ std::array<double, 2> at_strain(const std::vector<MaterialPointStep>& path, doub
 // Thesis 3.2.3: uniaxial strain compression. Yield at sigma_a 110.42, sigma_r 19.49 MPa (eq.
 // 3.16-3.17), then sigma_a = 51.96 + 3 sigma_r (eq. 3.18) and Table 3.3.
 TEST(MohrCoulombUniaxialStrain, CompressionMatchesThesis) {
-  const MaterialParams mat = thesis_mc();
+  const McMaterial mat = thesis_mc();
   const double total = -6e-3;
   const auto path = drive_mixed(mat, {{total, 0.0, 6000}}, LateralControl::ZeroStrain);
   std::size_t first = 0;
@@ -97,7 +99,7 @@ TEST(MohrCoulombUniaxialStrain, CompressionMatchesThesis) {
 // Thesis 3.2.4: uniaxial strain tension. Yield 18.40 / 3.25 MPa (eq. 3.20), then
 // sigma_a = 17.32 + sigma_r / 3 (eq. 3.21) up to the apex c cot(phi) = 25.98 MPa; Table 3.4.
 TEST(MohrCoulombUniaxialStrain, TensionReachesApex) {
-  const MaterialParams mat = thesis_mc();
+  const McMaterial mat = thesis_mc();
   const double total = 3.75e-3;
   const auto path = drive_mixed(mat, {{total, 0.0, 3750}}, LateralControl::ZeroStrain);
   std::size_t first = 0;
@@ -143,11 +145,11 @@ TEST(MohrCoulombReturn, LandsOnSurfaceAndDissipates) {
   };
   for (const Case cs :
        {Case{30, 0, 0}, Case{10, 0, 0}, Case{0, 0, 0}, Case{15, 2e9, 0}, Case{15, -2e9, 5e6}}) {
-    MaterialParams mat = thesis_mc(cs.psi);
+    McMaterial mat = thesis_mc(cs.psi);
     mat.cohesion_hardening_modulus = cs.H;
     mat.residual_cohesion = cs.residual;
-    ASSERT_EQ(mohr_coulomb_param_error(mat), "");
-    const MohrCoulomb mc = make_mohr_coulomb(mat);
+    ASSERT_EQ(mohr_coulomb_param_error(mat, mat), "");
+    const MohrCoulomb mc = make_mohr_coulomb(mat, mat);
     femdem::test::TrialStrains gen;
     int kinds[4] = {0, 0, 0, 0};  // main, right edge (s2 = s3), left edge (s1 = s2), apex
     for (int n = 0; n < 20000; ++n) {
@@ -186,7 +188,7 @@ TEST(MohrCoulombReturn, LandsOnSurfaceAndDissipates) {
 // each edge region and into the apex region give returned stresses that move by no more than a
 // bounded multiple of the trial's own change.
 TEST(MohrCoulombReturn, ContinuousAcrossEdgesAndApex) {
-  const MohrCoulomb mc = make_mohr_coulomb(thesis_mc(10.0));
+  const MohrCoulomb mc = make_mohr_coulomb(thesis_mc(10.0), thesis_mc(10.0));
   auto returned = [&](double t) {
     // a loop in trial space: deviatoric direction turning through all Lode angles at a radius
     // far beyond yield, with the mean strain rising into hydrostatic tension (apex) and back
@@ -217,7 +219,7 @@ TEST(MohrCoulombReturn, ContinuousAcrossEdgesAndApex) {
 // Objectivity and the finite-strain path: the same principal stretches in rotated axes give the
 // same principal stresses, and a uniaxial-strain path through the apex keeps det Cp^-1 finite.
 TEST(MohrCoulombFiniteStrain, RotatedAxesGiveSamePrincipalStresses) {
-  const MohrCoulomb mc = make_mohr_coulomb(thesis_mc(15.0));
+  const MohrCoulomb mc = make_mohr_coulomb(thesis_mc(15.0), thesis_mc(15.0));
   const double e[3] = {-8e-3, 1e-3, 2e-3};
   double F[3][3];
   femdem::test::stretch_in_rotated_axes(e, F);
@@ -237,11 +239,11 @@ TEST(MohrCoulombFiniteStrain, RotatedAxesGiveSamePrincipalStresses) {
 // cohesion until the residual value is reached, after which the perfectly plastic line of the
 // residual cohesion holds.
 TEST(MohrCoulombHardening, SofteningReachesResidualCohesion) {
-  MaterialParams mat = thesis_mc(30.0);
+  McMaterial mat = thesis_mc(30.0);
   mat.cohesion_hardening_modulus = -5e9;
   mat.residual_cohesion = 5e6;
   const auto path = drive_mixed(mat, {{-2e-2, 0.0, 4000}}, LateralControl::ZeroStrain);
-  const MohrCoulomb mc = make_mohr_coulomb(mat);
+  const MohrCoulomb mc = make_mohr_coulomb(mat, mat);
   for (const MaterialPointStep& st : path) {
     if (!st.yielded) continue;
     EXPECT_NEAR(mc_yield(st.tau, 30.0, mc.cohesion.value(st.state.kappa)), 0.0,
@@ -256,10 +258,10 @@ TEST(MohrCoulombHardening, SofteningReachesResidualCohesion) {
 
 // Softening steeper than the return can follow is refused with the key's name in the message.
 TEST(MohrCoulombParams, RejectsSnapBackSoftening) {
-  MaterialParams mat = thesis_mc(30.0);
+  McMaterial mat = thesis_mc(30.0);
   mat.cohesion_hardening_modulus = -1e12;
-  EXPECT_NE(mohr_coulomb_param_error(mat).find("cohesion_hardening_modulus"), std::string::npos);
+  EXPECT_NE(mohr_coulomb_param_error(mat, mat).find("cohesion_hardening_modulus"), std::string::npos);
   mat.cohesion_hardening_modulus = 0.0;
   mat.dilatancy_angle = 40.0;
-  EXPECT_NE(mohr_coulomb_param_error(mat).find("dilatancy_angle"), std::string::npos);
+  EXPECT_NE(mohr_coulomb_param_error(mat, mat).find("dilatancy_angle"), std::string::npos);
 }

@@ -18,6 +18,7 @@
 #include "materials/piecewise_drucker_prager.hpp"
 #include "materials/von_mises.hpp"
 #include "support/principal_stress.hpp"
+#include "support/test_material.hpp"
 
 using namespace femdem;
 using femdem::test::mean_of;
@@ -26,12 +27,13 @@ using femdem::test::sqrt_j2;
 
 namespace {
 
+using PwMaterial = TestMaterial<PiecewiseDruckerPragerParams>;
+
 constexpr double kMPa = 1e6;
 
-MaterialParams concrete(std::vector<std::pair<double, double>> pieces, double dilatancy) {
-  MaterialParams p;
+PwMaterial concrete(std::vector<std::pair<double, double>> pieces, double dilatancy) {
+  PwMaterial p;
   p.name = "pwdp";
-  p.model = MaterialModel::PiecewiseDruckerPrager;
   p.density = 2700.0;
   p.youngs_modulus = 40e9;
   p.poisson_ratio = 0.17;
@@ -57,7 +59,7 @@ int piece_at(const PiecewiseDruckerPrager& d, double p) {
 // The table's corners: the pieces meet where the thesis' points are, (p, q) = (-50, 29),
 // (-100, 44), (-150, 51), (-250, 58) MPa (notes: the printed signs are flipped).
 TEST(PiecewiseDruckerPrager, Table56CornersAreTheThesisPoints) {
-  const auto d = make_piecewise_drucker_prager(concrete(kTable56, 0.0));
+  const auto d = make_piecewise_drucker_prager(concrete(kTable56, 0.0), concrete(kTable56, 0.0));
   const double p[4] = {-50, -100, -150, -250}, q[4] = {29, 44, 51, 58};
   for (int k = 0; k < 4; ++k) {
     const double pk = (d.B[k] - d.B[k + 1]) / (d.A[k] - d.A[k + 1]) / kMPa;
@@ -72,7 +74,7 @@ TEST(PiecewiseDruckerPrager, Table56CornersAreTheThesisPoints) {
 // apex are reached, and the dissipation is non-negative.
 TEST(PiecewiseDruckerPrager, ReturnsLandOnTheRightPiece) {
   for (const double dil : {0.0, 0.02, 0.035}) {
-    const auto d = make_piecewise_drucker_prager(concrete(kTable56, dil));
+    const auto d = make_piecewise_drucker_prager(concrete(kTable56, dil), concrete(kTable56, dil));
     femdem::test::TrialStrains gen;
     std::set<int> pieces;
     int apex = 0;
@@ -105,7 +107,7 @@ TEST(PiecewiseDruckerPrager, ReturnsLandOnTheRightPiece) {
 // is needed, sec. 5.8.2): trials moving smoothly through every corner's wedge give returned
 // stresses that move smoothly.
 TEST(PiecewiseDruckerPrager, ContinuousAcrossCorners) {
-  const auto d = make_piecewise_drucker_prager(concrete(kTable56, 0.035));
+  const auto d = make_piecewise_drucker_prager(concrete(kTable56, 0.035), concrete(kTable56, 0.035));
   const double K = d.K, G = d.G;
   const int n = 100000;
   double worst = 0.0;
@@ -135,7 +137,7 @@ TEST(PiecewiseDruckerPrager, ContinuousAcrossCorners) {
 // One piece is the plain Drucker-Prager cone with eta = A, xi c = B, eta_bar = A_bar.
 TEST(PiecewiseDruckerPrager, OnePieceEqualsDruckerPrager) {
   for (const double dil : {0.0, 0.2, 0.42}) {
-    const auto pw = make_piecewise_drucker_prager(concrete({{0.42, 8e6}}, dil));
+    const auto pw = make_piecewise_drucker_prager(concrete({{0.42, 8e6}}, dil), concrete({{0.42, 8e6}}, dil));
     DruckerPrager dp;
     dp.K = pw.K;
     dp.G = pw.G;
@@ -159,11 +161,11 @@ TEST(PiecewiseDruckerPrager, OnePieceEqualsDruckerPrager) {
 
 // One piece with A = 0 is von Mises with sigma_y = sqrt3 B.
 TEST(PiecewiseDruckerPrager, ZeroSlopeIsVonMises) {
-  const auto pw = make_piecewise_drucker_prager(concrete({{0.0, 20e6}}, 0.0));
-  MaterialParams vmp = concrete({}, 0.0);
-  vmp.model = MaterialModel::VonMises;
+  const auto pw = make_piecewise_drucker_prager(concrete({{0.0, 20e6}}, 0.0), concrete({{0.0, 20e6}}, 0.0));
+  const PwMaterial base = concrete({}, 0.0);
+  VonMisesParams vmp;
   vmp.yield_stress = std::sqrt(3.0) * 20e6;
-  const VonMises vm = make_von_mises(vmp);
+  const VonMises vm = make_von_mises(base, vmp);
   femdem::test::TrialStrains gen;
   for (int n = 0; n < 5000; ++n) {
     const auto e = gen.next(4e-3);
@@ -176,7 +178,7 @@ TEST(PiecewiseDruckerPrager, ZeroSlopeIsVonMises) {
 
 // Hydrostatic tension beyond B_1 / A_1 returns to the apex sigma = (B_1 / A_1) I.
 TEST(PiecewiseDruckerPrager, HydrostaticTensionGoesToApex) {
-  const auto d = make_piecewise_drucker_prager(concrete(kTable56, 0.03));
+  const auto d = make_piecewise_drucker_prager(concrete(kTable56, 0.03), concrete(kTable56, 0.03));
   const double e[3] = {1e-3, 1e-3, 1e-3};  // p_trial = 3 K e = 60 MPa > 19.05
   const PrincipalReturn r = d.return_map(e, 0.0, 0.0);
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(r.tau[i] / kMPa, 8.0 / 0.42, 1e-9);
@@ -185,8 +187,8 @@ TEST(PiecewiseDruckerPrager, HydrostaticTensionGoesToApex) {
 // The thesis' check of the calibration (Fig. 5.39): confined (uniaxial-strain) compression
 // follows the polyline; with deviatoric flow the path climbs through every piece in order.
 TEST(PiecewiseDruckerPrager, ConfinedCompressionFollowsThePolyline) {
-  const MaterialParams mat = concrete(kTable56, 0.0);
-  const auto d = make_piecewise_drucker_prager(mat);
+  const PwMaterial mat = concrete(kTable56, 0.0);
+  const auto d = make_piecewise_drucker_prager(mat, mat);
   const auto path = drive_mixed(mat, {{-2.5e-2, 0.0, 5000}}, LateralControl::ZeroStrain);
   int last_piece = 0;
   for (const MaterialPointStep& st : path) {

@@ -23,6 +23,7 @@
 #include "materials/hencky.hpp"
 #include "materials/material_point.hpp"
 #include "materials/von_mises.hpp"
+#include "support/test_material.hpp"
 
 using namespace femdem;
 
@@ -31,10 +32,11 @@ namespace {
 constexpr double kMPa = 1e6;
 
 // Table 3.1 of the thesis: E = 35 GPa, nu = 0.3, sigma_y = 35 MPa.
-MaterialParams table31(double H = 0.0) {
-  MaterialParams p;
+using VmMaterial = TestMaterial<VonMisesParams>;
+
+VmMaterial table31(double H = 0.0) {
+  VmMaterial p;
   p.name = "vm";
-  p.model = MaterialModel::VonMises;
   p.density = 2500.0;
   p.youngs_modulus = 35e9;
   p.poisson_ratio = 0.3;
@@ -137,9 +139,9 @@ std::vector<double> bilinear_cycle(double E, double sy0, double H, const std::ve
 
 // Thesis 3.2.1a (VALIDATION.md 2): perfectly plastic plateaus +-35 MPa, yield strain 1e-3.
 TEST(VonMisesUniaxialStress, PerfectlyPlasticPlateaus) {
-  const MaterialParams mat = table31();
+  const VmMaterial mat = table31();
   const auto path = drive_mixed(mat, cyclic_targets(), LateralControl::ZeroStress);
-  check_path_invariants(make_von_mises(mat), path);
+  check_path_invariants(make_von_mises(mat, mat), path);
   const auto ends = segment_ends(path);
   ASSERT_EQ(ends.size(), 3u);
   const double expect[3] = {35.0, -35.0, 35.0};  // compression positive
@@ -163,9 +165,9 @@ TEST(VonMisesUniaxialStress, PerfectlyPlasticPlateaus) {
 
 // Thesis 3.2.1b (VALIDATION.md 2): H = 3 GPa (the text says 3 MPa; eq. 3.4 uses 3e3 MPa).
 TEST(VonMisesUniaxialStress, LinearHardeningCycle) {
-  const MaterialParams mat = table31(3e9);
+  const VmMaterial mat = table31(3e9);
   const auto path = drive_mixed(mat, cyclic_targets(), LateralControl::ZeroStress);
-  check_path_invariants(make_von_mises(mat), path);
+  check_path_invariants(make_von_mises(mat, mat), path);
   const auto ends = segment_ends(path);
   ASSERT_EQ(ends.size(), 3u);
   const double thesis[3] = {41.22, -52.67, 72.67};  // thesis L4207, L4235-4240
@@ -182,9 +184,9 @@ TEST(VonMisesUniaxialStress, LinearHardeningCycle) {
 
 // Thesis 3.2.2 (VALIDATION.md 2): uniaxial strain compression to 3.25e-3.
 TEST(VonMisesUniaxialStrain, YieldPointAndSlope) {
-  const MaterialParams mat = table31();
+  const VmMaterial mat = table31();
   const auto path = drive_mixed(mat, {{-3.25e-3, 0.0, 325}}, LateralControl::ZeroStrain);
-  check_path_invariants(make_von_mises(mat), path);
+  check_path_invariants(make_von_mises(mat, mat), path);
   // increment 130 is e_a = 1.3e-3: on the surface, not yet plastic; 131 is plastic
   const MaterialPointStep& y = path[129];
   EXPECT_FALSE(y.yielded);
@@ -209,8 +211,8 @@ TEST(VonMisesUniaxialStrain, YieldPointAndSlope) {
 // deviatoric radius sqrt(2 J2) stays sqrt(2/3) sigma_y = 28.58 MPa while the Lode angle leaves 60
 // degrees (the return goes along a new radial direction).
 TEST(VonMisesMixed, CompressionThenShearStaysOnCircle) {
-  const MaterialParams mat = table31();
-  const VonMises vm = make_von_mises(mat);
+  const VmMaterial mat = table31();
+  const VonMises vm = make_von_mises(mat, mat);
   const auto path =
       drive_mixed(mat, {{-2e-3, 0.0, 200}, {-3e-3, 1e-2, 200}}, LateralControl::ZeroStress);
   check_path_invariants(vm, path);
@@ -238,8 +240,8 @@ TEST(VonMisesMixed, CompressionThenShearStaysOnCircle) {
 // F -> Q F with a large, changing rigid rotation gives tau -> Q tau Q^T, the same eps_p and
 // dissipation, to round-off, on a large plastic path.
 TEST(VonMisesFiniteStrain, Objectivity) {
-  MaterialParams mat = table31(3e9);
-  const VonMises vm = make_von_mises(mat);
+  VmMaterial mat = table31(3e9);
+  const VonMises vm = make_von_mises(mat, mat);
   const int n = 400;
   std::vector<F3> plain, rotated;
   std::vector<Eigen::Matrix3d> Qs;
@@ -303,10 +305,10 @@ TEST(VonMisesFiniteStrain, StretchAndReturnCycles) {
     }
   // elastic: Hencky model, and von Mises with a yield stress never reached
   MaterialParams el = table31();
-  el.model = MaterialModel::Elastic;
-  MaterialParams strong = table31();
+  el.model = ElasticParams{};
+  VmMaterial strong = table31();
   strong.yield_stress = 1e15;
-  for (const MaterialParams& m : {el, strong}) {
+  for (const MaterialParams& m : {el, MaterialParams(strong)}) {
     const auto path = drive_deformation(m, cycle);
     for (int c = 0; c < 3; ++c) {
       const MaterialPointStep& st = path[(c + 1) * n - 1];
@@ -318,8 +320,8 @@ TEST(VonMisesFiniteStrain, StretchAndReturnCycles) {
     EXPECT_GT(q_of(path[n / 2].tau), 1e9);
   }
   // plastic
-  const MaterialParams pl = table31(3e9);
-  const VonMises vm = make_von_mises(pl);
+  const VmMaterial pl = table31(3e9);
+  const VonMises vm = make_von_mises(pl, pl);
   const auto path = drive_deformation(vm, cycle);
   check_path_invariants(vm, path);
   double worst = 0.0;
@@ -332,7 +334,7 @@ TEST(VonMisesFiniteStrain, StretchAndReturnCycles) {
 
 // ElasticModel through finite_strain_update equals hencky_stress on random deformations.
 TEST(FiniteStrainUpdate, ElasticModelEqualsHencky) {
-  const MaterialParams m = table31();
+  const VmMaterial m = table31();
   const ElasticModel el{m.lame_lambda(), m.shear_modulus()};
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-0.4, 0.4);
@@ -364,14 +366,14 @@ TEST(FiniteStrainUpdate, ElasticModelEqualsHencky) {
 
 // A two-point tabulated curve [[0, 35 MPa], [1, 35 MPa + 3 GPa]] is linear hardening H = 3 GPa.
 TEST(VonMisesHardening, TwoPointCurveEqualsLinear) {
-  const MaterialParams lin = table31(3e9);
-  MaterialParams tab = table31();
+  const VmMaterial lin = table31(3e9);
+  VmMaterial tab = table31();
   tab.hardening = HardeningLaw::Tabulated;
   tab.hardening_curve = {{0.0, 35e6}, {1.0, 35e6 + 3e9}};
   ASSERT_EQ(von_mises_param_error(tab), "");
   const auto a = drive_mixed(lin, cyclic_targets(), LateralControl::ZeroStress);
   const auto b = drive_mixed(tab, cyclic_targets(), LateralControl::ZeroStress);
-  check_path_invariants(make_von_mises(tab), b);
+  check_path_invariants(make_von_mises(tab, tab), b);
   ASSERT_EQ(a.size(), b.size());
   for (std::size_t k = 0; k < a.size(); ++k) {
     for (int i = 0; i < 6; ++i) EXPECT_NEAR(b[k].tau[i], a[k].tau[i], 1e-9 * 35e6) << k;
@@ -382,11 +384,11 @@ TEST(VonMisesHardening, TwoPointCurveEqualsLinear) {
 // Tabulated curve with hardening then softening to zero: the safeguarded Newton return still
 // ends every plastic step on the surface, and the stress follows the curve.
 TEST(VonMisesHardening, TabulatedSofteningCurve) {
-  MaterialParams m = table31();
+  VmMaterial m = table31();
   m.hardening = HardeningLaw::Tabulated;
   m.hardening_curve = {{0.0, 35e6}, {2e-3, 45e6}, {5e-3, 20e6}, {8e-3, 0.0}};
   ASSERT_EQ(von_mises_param_error(m), "");
-  const VonMises vm = make_von_mises(m);
+  const VonMises vm = make_von_mises(m, m);
   const auto path = drive_mixed(m, {{-1.5e-2, 0.0, 300}}, LateralControl::ZeroStress);
   check_path_invariants(vm, path, 1e-9);
   double peak = 0.0;
@@ -401,14 +403,14 @@ TEST(VonMisesHardening, TabulatedSofteningCurve) {
 // Swift sigma_y = K (eps0 + eps_p)^n, uniaxial stress, monotonic. With n = 1/2 the hand solution
 // is a quadratic: tau = K sqrt(eps0 + e - tau/E)  =>  tau^2 + (K^2/E) tau - K^2 (eps0 + e) = 0.
 TEST(VonMisesHardening, SwiftAgainstHandValue) {
-  MaterialParams m = table31();
+  VmMaterial m = table31();
   m.youngs_modulus = 200e9;
   m.hardening = HardeningLaw::Swift;
   m.swift_K = 1000e6;
   m.swift_eps0 = 0.01;  // initial yield 100 MPa
   m.swift_n = 0.5;
   ASSERT_EQ(von_mises_param_error(m), "");
-  const VonMises vm = make_von_mises(m);
+  const VonMises vm = make_von_mises(m, m);
   const double e = 0.05, E = 200e9, K = 1000e6;
   const double bq = K * K / E, cq = K * K * (0.01 + e);
   const double hand = 0.5 * (-bq + std::sqrt(bq * bq + 4.0 * cq));  // 242.46 MPa
@@ -425,16 +427,16 @@ TEST(VonMisesHardening, SwiftAgainstHandValue) {
 // Johnson-Cook factor, implicit: the returned q equals sigma_y(eps_p) (1 + C ln(rate / rate0))
 // with the rate of this very increment; below the reference rate it has no effect.
 TEST(VonMisesHardening, JohnsonCookRateFactor) {
-  MaterialParams m = table31(3e9);
+  VmMaterial m = table31(3e9);
   m.jc_C = 0.025;
   m.jc_epsdot0 = 1.0;
   ASSERT_EQ(von_mises_param_error(m), "");
-  const VonMises vm = make_von_mises(m);
-  const MaterialParams slow_params = table31(3e9);
+  const VonMises vm = make_von_mises(m, m);
+  const VmMaterial slow_params = table31(3e9);
   const double e_trial[3] = {-2e-3, 1e-3, 0.5e-3};
   for (double dt : {1e-6, 1e-3, 1.0, 0.0}) {
     const PrincipalReturn r = vm.return_map(e_trial, 0.0, dt);
-    const PrincipalReturn r0 = make_von_mises(slow_params).return_map(e_trial, 0.0, dt);
+    const PrincipalReturn r0 = make_von_mises(slow_params, slow_params).return_map(e_trial, 0.0, dt);
     ASSERT_TRUE(r.yielded);
     const double dg = r.kappa;
     const double rate = (dt > 0.0) ? dg / dt : 0.0;
@@ -456,7 +458,7 @@ TEST(VonMisesHardening, JohnsonCookRateFactor) {
 }
 
 TEST(VonMisesParams, Validation) {
-  MaterialParams m = table31();
+  VmMaterial m = table31();
   EXPECT_EQ(von_mises_param_error(m), "");
   m.yield_stress = 0.0;
   EXPECT_NE(von_mises_param_error(m).find("yield_stress"), std::string::npos);

@@ -80,11 +80,11 @@ void ElementKernelPlastic(benchmark::State& state) {
   for (int n = 0; n < m.node_count; ++n)
     for (int k = 0; k < 3; ++k)
       m.x[3 * n + k] = m.X[3 * n + k] * (1.0 + 0.01 * (k + 1)) + 0.003 * m.X[3 * n + (k + 1) % 3];
-  MaterialParams p = m.materials[0];
-  p.model = MaterialModel::VonMises;
-  p.yield_stress = 50e6;
-  p.hardening_modulus = 1e9;
-  const VonMises vm = make_von_mises(p);
+  const MaterialParams& p = m.materials[0];
+  VonMisesParams vmp;
+  vmp.yield_stress = 50e6;
+  vmp.hardening_modulus = 1e9;
+  const VonMises vm = make_von_mises(p, vmp);
   const ElasticModel el{p.lame_lambda(), p.shear_modulus()};
   const FbarMode modes[3] = {FbarMode::Off, FbarMode::VolumeAverage, FbarMode::Centroid};
   const int variant = static_cast<int>(state.range(1));
@@ -118,18 +118,23 @@ void ElementKernelModels(benchmark::State& state) {
   for (int n = 0; n < m.node_count; ++n)
     for (int k = 0; k < 3; ++k)
       m.x[3 * n + k] = m.X[3 * n + k] * (1.0 - 0.01 * (k + 1)) + 0.003 * m.X[3 * n + (k + 1) % 3];
-  MaterialParams p = m.materials[0];
-  p.yield_stress = 50e6;
-  p.hardening_modulus = 1e9;
-  p.cohesion = 15e6;
-  p.friction_angle = 30.0;
-  p.dilatancy_angle = 15.0;
-  p.pieces = {{0.42, 8e6}, {0.30, 14e6}, {0.14, 30e6}, {0.07, 40.5e6}, {0.035, 49.25e6}};
+  const MaterialParams& p = m.materials[0];
+  VonMisesParams vmp;
+  vmp.yield_stress = 50e6;
+  vmp.hardening_modulus = 1e9;
+  DruckerPragerParams dpp;
+  dpp.cohesion = 15e6;
+  dpp.friction_angle = 30.0;
+  dpp.dilatancy_angle = 15.0;
+  MohrCoulombParams mcp;
+  static_cast<FrictionalParams&>(mcp) = dpp;
+  PiecewiseDruckerPragerParams pwp;
+  pwp.pieces = {{0.42, 8e6}, {0.30, 14e6}, {0.14, 30e6}, {0.07, 40.5e6}, {0.035, 49.25e6}};
   const ElasticModel el{p.lame_lambda(), p.shear_modulus()};
-  const VonMises vm = make_von_mises(p);
-  const DruckerPrager dp = make_drucker_prager(p);
-  const MohrCoulomb mc = make_mohr_coulomb(p);
-  const PiecewiseDruckerPrager pw = make_piecewise_drucker_prager(p);
+  const VonMises vm = make_von_mises(p, vmp);
+  const DruckerPrager dp = make_drucker_prager(p, dpp);
+  const MohrCoulomb mc = make_mohr_coulomb(p, mcp);
+  const PiecewiseDruckerPrager pw = make_piecewise_drucker_prager(p, pwp);
   const int variant = static_cast<int>(state.range(1));
   std::vector<double> fe(30 * static_cast<std::size_t>(m.element_count));
   auto run = [&](const auto& model) {

@@ -43,45 +43,12 @@ void print_scene_summary(const SceneFile& scene) {
   for (const auto& mat : m.materials) {
     const double cp = std::sqrt(mat.p_wave_modulus() / mat.density);
     const double cs = std::sqrt(mat.shear_modulus() / mat.density);
-    const bool plastic = mat.model == MaterialModel::VonMises;
     fmt::print("  {}: {}, density {:g} kg/m^3, E = {:g} Pa, nu = {:g}\n", mat.name,
-               material_model_name(mat.model), mat.density, mat.youngs_modulus,
-               mat.poisson_ratio);
-    if (mat.model == MaterialModel::MohrCoulomb ||
-        mat.model == MaterialModel::DruckerPrager) {
-      fmt::print("    cohesion {:g} Pa, friction angle {:g} deg, dilatancy angle {:g} deg\n",
-                 mat.cohesion, mat.friction_angle, mat.dilatancy_angle);
-      if (mat.model == MaterialModel::DruckerPrager)
-        fmt::print("    cone matched to Mohr-Coulomb: {}\n",
-                   drucker_prager_cone_name(mat.cone));
-      if (mat.cohesion_hardening_modulus != 0.0)
-        fmt::print("    cohesion hardening {:g} Pa, residual cohesion {:g} Pa\n",
-                   mat.cohesion_hardening_modulus, mat.residual_cohesion);
-    }
-    if (mat.model == MaterialModel::PiecewiseDruckerPrager) {
-      fmt::print("    {} pieces [A, B Pa]:", mat.pieces.size());
-      for (const auto& [a, b] : mat.pieces) fmt::print(" [{:g}, {:g}]", a, b);
-      fmt::print(", dilatancy {:g}\n", mat.pieces_dilatancy);
-    }
-    if (plastic) {
-      switch (mat.hardening) {
-        case HardeningLaw::Linear:
-          fmt::print("    yield stress {:g} Pa, linear hardening {:g} Pa\n", mat.yield_stress,
-                     mat.hardening_modulus);
-          break;
-        case HardeningLaw::Tabulated:
-          fmt::print("    tabulated hardening, {} points, yield stress {:g} Pa\n",
-                     mat.hardening_curve.size(), mat.yield_stress);
-          break;
-        case HardeningLaw::Swift:
-          fmt::print("    Swift hardening {:g} ({:g} + eps_p)^{:g} Pa, yield stress {:g} Pa\n",
-                     mat.swift_K, mat.swift_eps0, mat.swift_n, mat.yield_stress);
-          break;
-      }
-      if (mat.jc_C > 0.0)
-        fmt::print("    Johnson-Cook rate factor C = {:g}, reference rate {:g} 1/s\n", mat.jc_C,
-                   mat.jc_epsdot0);
-    }
+               material_model_name(mat), mat.density, mat.youngs_modulus, mat.poisson_ratio);
+    fmt::print("{}", with_material_model(mat.model.index(), [&](auto model) {
+                 using M = decltype(model);
+                 return M::describe(mat, mat.template params<typename M::Params>());
+               }));
     fmt::print("    K = {:g} Pa, G = {:g} Pa, wave speed {:g} m/s (P), {:g} m/s (S)\n",
                mat.bulk_modulus(), mat.shear_modulus(), cp, cs);
   }

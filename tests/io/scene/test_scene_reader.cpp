@@ -353,7 +353,7 @@ fix = ["x", "y"]
   EXPECT_EQ(m.simulation.gravity, Vec3::Zero());
   EXPECT_EQ(m.simulation.threads, 0);
   ASSERT_EQ(m.materials.size(), 1u);
-  EXPECT_EQ(m.materials[0].model, femdem::MaterialModel::Elastic);
+  EXPECT_TRUE(m.materials[0].is<femdem::ElasticParams>());
   ASSERT_EQ(m.bodies.size(), 1u);
   EXPECT_EQ(m.bodies[0].material, 0);
   EXPECT_EQ(m.bodies[0].velocity, Vec3::Zero());
