@@ -19,28 +19,46 @@
 //
 // Every pair is evaluated independently (OpenMP) into its own slot and the forces are summed
 // over pairs in their sorted order, so results do not depend on the thread count.
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
 #include "contact/nbs_broadphase.hpp"
 #include "contact/verlet_buffer.hpp"
+#include "engine/contact_model.hpp"
 #include "engine/contact_patch.hpp"
 #include "engine/model.hpp"
 
 namespace femdem {
 
-class BodyContact {
+class BodyContact final : public ContactModel {
  public:
   explicit BodyContact(const Model& m);
 
   // False when no two bodies can touch (fewer than two bodies with contact sub-tets, or all
   // fixed): compute() then does nothing.
-  bool active() const { return active_; }
+  bool active() const override { return active_; }
 
   // Adds the contact forces at the current positions to f (3 per node), advancing the
   // friction springs over step_dt with the (half-step) velocities.
   void compute(const Model& m, double step_dt, std::vector<double>& f);
+  // ContactModel: the same, its energy and friction work added to `sums`.
+  void compute(Model& m, double step_dt, std::vector<double>& f, ContactSums& sums) override {
+    compute(static_cast<const Model&>(m), step_dt, f);
+    sums.energy += energy_;
+    sums.friction_dissipated += dissipated_;
+  }
+  void append_patches(std::vector<ContactPatch>& out) const override {
+    out.insert(out.end(), patches_.begin(), patches_.end());
+  }
+  // omega^2 <= omega_element^2 + max over nodes of k / m (see max_stiffness_over_mass).
+  double stable_step(const Model&, double dt_element, double dt) override {
+    if (!(max_k_over_m_ > 0.0)) return dt;
+    const double omega_el = 2.0 / dt_element;
+    return std::min(dt, 2.0 / std::sqrt(omega_el * omega_el + max_k_over_m_));
+  }
 
   double energy() const { return energy_; }          // stored now (potential + springs)
   double dissipated() const { return dissipated_; }  // by friction in the last compute()

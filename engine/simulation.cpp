@@ -18,7 +18,10 @@ constexpr std::int32_t kParallelMinElements = 512;
 constexpr std::int32_t kParallelMinNodes = 4096;
 }  // namespace
 
-Simulation::Simulation(Model model) : model_(std::move(model)), body_contact_(model_) {
+Simulation::Simulation(Model model)
+    : model_(std::move(model)),
+      wall_contact_(model_, model_.contact.impact_damping > 0.0),
+      body_contact_(model_) {
   const auto nn = static_cast<std::size_t>(model_.node_count);
   const auto ne = static_cast<std::size_t>(model_.element_count);
   accel_.assign(3 * nn, 0.0);
@@ -61,13 +64,8 @@ Simulation::Simulation(Model model) : model_(std::move(model)), body_contact_(mo
     if (model_.dof_mode[i] == 2) driven_dofs_.push_back(i);
   body_added_mass_.assign(model_.bodies.size(), 0.0);
   if (model_.settings.mass_scaling_time_step > 0.0) elem_mass_scale_.assign(ne, 1.0);
-  bool wall_friction = false;
-  for (const Wall& w : model_.walls) wall_friction = wall_friction || w.friction > 0.0;
-  if (wall_friction) wall_stick_.assign(3 * model_.surface.size() * model_.walls.size(), 0.0);
   elem_scratch_.assign(ne, 0.0);
-  wall_stiffness_.assign(model_.walls.size(), 0.0);
   if (model_.contact.impact_damping > 0.0) {
-    wall_patches_.assign(model_.bodies.size() * model_.walls.size(), ContactPatch{});
     impact_scratch_.resize(model_.bodies.size());
     body_contact_.collect_patches(true);
   }
@@ -220,102 +218,23 @@ void Simulation::compute_forces(double step_dt) {
     viscous_dissipation_ += power * step_dt;
   }
 
-  // 3. rigid walls: penalty on boundary nodes, Coulomb friction by a tangential spring per
-  // (node, wall) that slips at mu times the normal force
+  // 3. contact, in a fixed order: bodies on walls (engine/wall_contact.cpp), then bodies on
+  // each other (engine/body_contact.cpp), each adding to f_contact and to the step's sums
   std::fill(m.f_contact.begin(), m.f_contact.end(), 0.0);
-  double contact = 0.0, damping_power = 0.0, friction_dissipated = 0.0;
-  for (auto& w : m.walls) w.force.setZero();
-  const bool impact_damping = m.contact.impact_damping > 0.0;
-  if (impact_damping) std::fill(wall_patches_.begin(), wall_patches_.end(), ContactPatch{});
-  if (!m.walls.empty()) {
-    const std::size_t nw = m.walls.size();
-    for (std::size_t si = 0; si < m.surface.size(); ++si) {
-      const SurfaceNode& s = m.surface[si];
-      const Body& b = m.bodies[s.body];
-      if (b.fixed) continue;
-      const double E = m.materials[b.material].youngs_modulus;
-      const Vec3 p(x[3 * s.node], x[3 * s.node + 1], x[3 * s.node + 2]);
-      const Vec3 v(m.v[3 * s.node], m.v[3 * s.node + 1], m.v[3 * s.node + 2]);
-      for (std::size_t wi = 0; wi < nw; ++wi) {
-        Wall& w = m.walls[wi];
-        double* slip = wall_stick_.empty() ? nullptr : wall_stick_.data() + 3 * (si * nw + wi);
-        const double k = w.penalty_factor * E * s.area / s.depth;
-        const double d = (w.point - p).dot(w.normal);  // penetration depth
-        // past the end of a bounded wall (a die's mouth) a node is as free as one in front of it
-        if (d <= 0.0 || !w.acts_at(p)) {
-          if (slip) {
-            // leaving the wall frees the tangential spring: its energy is lost to friction
-            const Vec3 u(slip[0], slip[1], slip[2]);
-            friction_dissipated += 0.5 * k * u.squaredNorm();
-            slip[0] = slip[1] = slip[2] = 0.0;
-          }
-          continue;
-        }
-        double fn = k * d;
-        if (impact_damping) {
-          ContactPatch& q = wall_patches_[static_cast<std::size_t>(s.body) * nw + wi];
-          q.force_on_a += fn * w.normal;
-          q.weighted_point += fn * p;
-          q.weight += fn;
-          q.stiffness += k;
-        }
-        const Vec3 v_rel = v - w.step_velocity;
-        const double vn = v_rel.dot(w.normal);
-        if (w.damping > 0.0) {
-          // dashpot on the approach/separation speed (half-step velocity), never pulling
-          const double fd = std::max(-2.0 * w.damping * std::sqrt(k * m.mass[s.node]) * vn, -fn);
-          fn += fd;
-          damping_power += fd * vn;  // <= 0
-        }
-        Vec3 f = fn * w.normal;
-        contact += 0.5 * k * d * d;
-        if (slip && w.friction > 0.0) {
-          // The spring stretches with the tangential motion over the step (half-step
-          // velocity); past mu fn it slides, and the energy it sheds is dissipated.
-          const Vec3 u_old(slip[0], slip[1], slip[2]);
-          const Vec3 du = step_dt * (v_rel - vn * w.normal);
-          Vec3 u = u_old + du;
-          u -= u.dot(w.normal) * w.normal;
-          const double limit = w.friction * fn / k;  // largest stuck stretch
-          const double stretch = u.norm();
-          if (stretch > limit) {
-            // Slides. Dissipated: the work of the spring force over the step (trapezoidal in
-            // its old and new values, as the time integrator applies it) minus the change of
-            // its stored energy; mu fn times the slip for a steady slide, 0 when stuck.
-            const Vec3 u_new = u * (limit / stretch);
-            friction_dissipated +=
-                0.5 * k * ((u_old + u_new).dot(du) - (u_new.squaredNorm() - u_old.squaredNorm()));
-            u = u_new;
-          }
-          f -= k * u;
-          contact += 0.5 * k * u.squaredNorm();
-          slip[0] = u[0], slip[1] = u[1], slip[2] = u[2];
-        }
-        for (int c = 0; c < 3; ++c) m.f_contact[3 * s.node + c] += f[c];
-        w.force -= f;
-      }
-    }
-  }
-  // 3b. contact between bodies (adds to f_contact, after the walls)
-  if (body_contact_.active()) {
-    body_contact_.compute(m, step_dt, m.f_contact);
-    contact += body_contact_.energy();
-    friction_dissipated += body_contact_.dissipated();
-  }
+  ContactSums sums;
+  ContactModel* const contacts[] = {&wall_contact_, &body_contact_};
+  for (ContactModel* c : contacts)
+    if (c->active()) c->compute(m, step_dt, m.f_contact, sums);
   // 3c. impact damping on the bodies' rigid motions, per contact patch
-  if (impact_damping) {
-    patches_.assign(body_contact_.patches().begin(), body_contact_.patches().end());
-    const std::size_t nw = m.walls.size();
-    for (std::size_t i = 0; i < wall_patches_.size(); ++i) {
-      ContactPatch q = wall_patches_[i];
-      if (!(q.weight > 0.0)) continue;
-      q.body_a = static_cast<std::int32_t>(i / nw);
-      q.body_b = ContactPatch::wall_side(i % nw);
-      patches_.push_back(q);
-    }
-    damping_power +=
+  if (m.contact.impact_damping > 0.0) {
+    patches_.clear();
+    body_contact_.append_patches(patches_);
+    wall_contact_.append_patches(patches_);
+    sums.damping_power +=
         damp_impacts(m, m.contact.impact_damping, patches_, accel_, 0.5 * step_dt, impact_scratch_);
   }
+  const double contact = sums.energy, friction_dissipated = sums.friction_dissipated,
+               damping_power = sums.damping_power;
   contact_energy_ = contact;
   contact_dissipation_ += friction_dissipated - damping_power * step_dt;
 
@@ -447,39 +366,8 @@ void Simulation::set_time_step() {
       dt_el = std::min(dt_el, elem_dt_[e] * std::sqrt(elem_mass_scale_[e]));
   }
   double dt = dt_el;
-  // Wall contact adds a spring k to boundary nodes near a wall; bound the node's frequency by
-  // the element's plus the spring's (omega^2 <= omega_e^2 + k/m).
-  if (!m.walls.empty()) {
-    const double omega_el = 2.0 / dt_el;
-    std::fill(wall_stiffness_.begin(), wall_stiffness_.end(), 0.0);
-    for (const SurfaceNode& s : m.surface) {
-      const Body& b = m.bodies[s.body];
-      if (b.fixed) continue;
-      const Vec3 p(m.x[3 * s.node], m.x[3 * s.node + 1], m.x[3 * s.node + 2]);
-      for (std::size_t wi = 0; wi < m.walls.size(); ++wi) {
-        const Wall& w = m.walls[wi];
-        if ((p - w.point).dot(w.normal) > s.depth) continue;
-        const double k =
-            w.penalty_factor * m.materials[b.material].youngs_modulus * s.area / s.depth;
-        wall_stiffness_[wi] += k;
-        // a damping ratio xi shrinks the stable step by sqrt(1 + xi^2) - xi
-        const double xi = w.damping;
-        dt = std::min(dt, 2.0 * (std::sqrt(1.0 + xi * xi) - xi) /
-                              std::sqrt(omega_el * omega_el + k / m.mass[s.node]));
-      }
-    }
-  }
-  if (body_contact_.active() && body_contact_.max_stiffness_over_mass() > 0.0) {
-    const double omega_el = 2.0 / dt_el;
-    dt = std::min(dt,
-                  2.0 / std::sqrt(omega_el * omega_el + body_contact_.max_stiffness_over_mass()));
-  }
-  // A force-driven wall is a mass on the contact springs of every node near it (in parallel):
-  // its own frequency must be resolved too. (The nodes' bound above already counts each spring
-  // on its node's side.)
-  for (std::size_t wi = 0; wi < m.walls.size(); ++wi)
-    if (m.walls[wi].force_driven() && wall_stiffness_[wi] > 0.0)
-      dt = std::min(dt, 2.0 / std::sqrt(wall_stiffness_[wi] / m.walls[wi].mass));
+  for (ContactModel* c : std::initializer_list<ContactModel*>{&wall_contact_, &body_contact_})
+    if (c->active()) dt = c->stable_step(m, dt_el, dt);
   stable_dt_ = dt;
   dt_ = m.settings.time_step > 0.0 ? m.settings.time_step : m.settings.time_step_safety * dt;
 }

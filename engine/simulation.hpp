@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "engine/body_contact.hpp"
+#include "engine/wall_contact.hpp"
 #include "engine/contact_patch.hpp"
 #include "engine/impact_damping.hpp"
 #include "engine/model.hpp"
@@ -120,17 +121,14 @@ class Simulation {
   double mass_scaling_dissipation_ = 0.0;
   std::vector<double> elem_mass_scale_;  // >= 1 per element; empty when mass scaling is off
   std::vector<double> body_added_mass_;  // per body
-  // Tangential spring stretch (3) per (surface node, wall) for wall friction; empty when no
-  // wall has friction.
-  std::vector<double> wall_stick_;
+  WallContact wall_contact_;
   BodyContact body_contact_;
   // impact damping (contact.impact_damping > 0): the body-wall patches (per body x wall), all
   // patches of the step, and the rigid motions of the bodies in them
-  std::vector<ContactPatch> wall_patches_, patches_;
+  std::vector<ContactPatch> patches_;
   ImpactDampingScratch impact_scratch_;
   std::vector<double> elem_viscous_power_;    // per element, this step
   mutable std::vector<double> elem_scratch_;  // per element, for bodies_volume
-  std::vector<double> wall_stiffness_;        // per wall: contact stiffness near it (stable step)
   // nodal F-bar (FbarMode::Nodal) work arrays
   bool has_nodal_fbar_ = false;
   std::vector<double> elem_volume_, elem_pressure_weight_, node_J_, node_Q_, node_ref_volume_;

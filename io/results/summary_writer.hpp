@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
-// summary.json: the run's scalar results (SCENE_FORMAT.md, "Outputs"), read by `sweep` and by
+// summary.json: the run's scalar results (docs/OUTPUTS.md), read by `sweep` and by
 // scripts. Written atomically: a half-written summary never exists.
 #include <array>
 #include <cstdint>
@@ -72,7 +72,7 @@ struct RunSummary {
   std::optional<CompactionSummary> compaction;  // written as "compaction" when present
 };
 
-// The JSON text (2-space indented, keys in the order of SCENE_FORMAT.md, doubles in shortest
+// The JSON text (2-space indented, keys in the order of docs/OUTPUTS.md, doubles in shortest
 // round-trip form; non-finite numbers become null).
 std::string summary_to_json(const RunSummary& summary);
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // results.xdmf opens in ParaView as a time series of quadratic tetrahedra with every field
-// (SCENE_FORMAT.md, outputs). Needs ParaView's pvbatch (Debian: paraview, python3-paraview),
+// (docs/OUTPUTS.md). Needs ParaView's pvbatch (Debian: paraview, python3-paraview),
 // which tools/setup does not install (it is large); the test is skipped without it.
 #include <gtest/gtest.h>
 #include <sys/wait.h>

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// summary.json: key names of SCENE_FORMAT.md, null restitution, exact doubles, atomic write.
+// summary.json: key names of docs/OUTPUTS.md, null restitution, exact doubles, atomic write.
 #include <gtest/gtest.h>
 
 #include <cmath>

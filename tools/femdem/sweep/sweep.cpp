@@ -1,17 +1,14 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "tools/femdem/sweep/sweep.hpp"
 
-#include <fcntl.h>
-#include <sched.h>
 #include <signal.h>
-#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <algorithm>
 #include <atomic>
-#include <cerrno>
 #include <chrono>
+#include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -19,7 +16,6 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -29,6 +25,9 @@
 #include "engine/errors.hpp"
 #include "io/atomic_file.hpp"
 #include "io/scene/scene_reader.hpp"
+#include "tools/femdem/sweep/child_process.hpp"
+#include "tools/femdem/sweep/sweep_table.hpp"
+#include "tools/femdem/sweep/value_list.hpp"
 
 namespace femdem {
 
@@ -36,402 +35,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
-using Json = nlohmann::ordered_json;
-
-std::string trim(std::string_view s) {
-  std::size_t a = 0, b = s.size();
-  while (a < b && std::isspace(static_cast<unsigned char>(s[a]))) ++a;
-  while (b > a && std::isspace(static_cast<unsigned char>(s[b - 1]))) --b;
-  return std::string(s.substr(a, b - a));
-}
-
-// ---------------------------------------------------------------------------------------------
-// Value lists
-
-// Splits at the commas outside brackets, braces, parentheses and quoted strings.
-std::vector<std::string> split_top_level(const std::string& s, const std::string& key,
-                                         const std::string& what) {
-  std::vector<std::string> items;
-  std::string cur;
-  int depth = 0;
-  char quote = 0;
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    const char c = s[i];
-    if (quote) {
-      cur += c;
-      if (c == '\\' && quote == '"' && i + 1 < s.size()) {
-        cur += s[++i];
-      } else if (c == quote) {
-        quote = 0;
-      }
-      continue;
-    }
-    if (c == '"' || c == '\'') {
-      quote = c;
-    } else if (c == '[' || c == '{' || c == '(') {
-      ++depth;
-    } else if (c == ']' || c == '}' || c == ')') {
-      if (--depth < 0)
-        throw InputError("unbalanced '" + std::string(1, c) + "' in " + what, {}, 0, 0, key);
-    } else if (c == ',' && depth == 0) {
-      items.push_back(trim(cur));
-      cur.clear();
-      continue;
-    }
-    cur += c;
-  }
-  if (quote) throw InputError("unterminated quoted string in " + what, {}, 0, 0, key);
-  if (depth != 0) throw InputError("unbalanced brackets in " + what, {}, 0, 0, key);
-  items.push_back(trim(cur));
-  return items;
-}
-
-struct Number {
-  double value = 0.0;
-  bool integer = false;  // written without '.', exponent, inf or nan
-};
-
-std::optional<Number> parse_number(const std::string& text) {
-  const std::string t = trim(text);
-  if (t.empty()) return std::nullopt;
-  for (char c : t)
-    if (!(std::isdigit(static_cast<unsigned char>(c)) || c == '+' || c == '-' || c == '.' ||
-          c == 'e' || c == 'E'))
-      return std::nullopt;
-  char* end = nullptr;
-  errno = 0;
-  const double v = std::strtod(t.c_str(), &end);
-  if (end != t.c_str() + t.size() || errno == ERANGE || !std::isfinite(v)) return std::nullopt;
-  return Number{v, t.find_first_of(".eE") == std::string::npos};
-}
-
-// A range value as TOML text: integers as integers, floats rounded to 12 significant digits
-// (so 0.1 + 2 * 0.1 is written 0.3) and always recognisable as a float.
-std::string format_range_value(double v, bool integer) {
-  if (integer) return std::to_string(static_cast<long long>(std::llround(v)));
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.12g", v);
-  double rounded = std::strtod(buf, nullptr);
-  if (rounded == 0.0) rounded = 0.0;  // no "-0"
-  std::snprintf(buf, sizeof buf, "%.15g", rounded);
-  std::string s = buf;
-  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
-  return s;
-}
-
-constexpr std::size_t kMaxRangeValues = 10000;
-
-// Expands "A:B:S", "linspace(A,B,N)" or "logspace(A,B,N)"; nullopt when the item is neither.
-std::optional<std::vector<std::string>> expand_range(const std::string& item,
-                                                     const std::string& key) {
-  const std::string where = "the range '" + item + "'";
-  std::vector<std::string> out;
-  for (const char* fn : {"linspace", "logspace"}) {
-    const std::string f = std::string(fn) + "(";
-    if (item.rfind(f, 0) != 0) continue;
-    if (item.back() != ')')
-      throw InputError(where + " must end with ')': " + fn + "(START,STOP,COUNT)", {}, 0, 0, key);
-    const auto args =
-        split_top_level(item.substr(f.size(), item.size() - f.size() - 1), key, where);
-    std::optional<Number> a, b, n;
-    if (args.size() == 3)
-      a = parse_number(args[0]), b = parse_number(args[1]), n = parse_number(args[2]);
-    if (!a || !b || !n)
-      throw InputError(where + ": expected " + std::string(fn) + "(START,STOP,COUNT) with numbers",
-                       {}, 0, 0, key);
-    if (!n->integer || n->value < 1 || n->value > static_cast<double>(kMaxRangeValues))
-      throw InputError(
-          where + ": COUNT must be an integer from 1 to " + std::to_string(kMaxRangeValues), {}, 0,
-          0, key);
-    const bool log = std::string(fn) == "logspace";
-    if (log && (a->value <= 0.0 || b->value <= 0.0))
-      throw InputError(where + ": logspace needs positive START and STOP", {}, 0, 0, key);
-    const auto count = static_cast<std::size_t>(n->value);
-    for (std::size_t i = 0; i < count; ++i) {
-      const double t = count == 1 ? 0.0 : static_cast<double>(i) / static_cast<double>(count - 1);
-      const double v =
-          log ? std::exp(std::log(a->value) + t * (std::log(b->value) - std::log(a->value)))
-              : a->value + t * (b->value - a->value);
-      out.push_back(format_range_value(i + 1 == count && count > 1 ? b->value : v, false));
-    }
-    return out;
-  }
-  // START:STOP:STEP, three numbers.
-  if (item.find(':') == std::string::npos) return std::nullopt;
-  std::vector<std::string> parts;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t c = item.find(':', start);
-    parts.push_back(item.substr(start, c - start));
-    if (c == std::string::npos) break;
-    start = c + 1;
-  }
-  std::vector<Number> nums;
-  for (const auto& p : parts)
-    if (auto n = parse_number(p)) nums.push_back(*n);
-  if (nums.size() != parts.size()) return std::nullopt;  // not a numeric range: a plain value
-  if (nums.size() != 3)
-    throw InputError(where + ": a range is START:STOP:STEP (three numbers)", {}, 0, 0, key);
-  const double a = nums[0].value, b = nums[1].value, step = nums[2].value;
-  if (step == 0.0 || (b - a) * step < 0.0)
-    throw InputError(where + ": STEP must be nonzero and lead from START to STOP", {}, 0, 0, key);
-  const bool integer = nums[0].integer && nums[1].integer && nums[2].integer;
-  const double count_f = std::floor((b - a) / step + 1e-9) + 1.0;
-  if (count_f > static_cast<double>(kMaxRangeValues))
-    throw InputError(where + ": more than " + std::to_string(kMaxRangeValues) + " values", {}, 0, 0,
-                     key);
-  const auto count = static_cast<std::size_t>(count_f);
-  for (std::size_t i = 0; i < count; ++i)
-    out.push_back(format_range_value(a + static_cast<double>(i) * step, integer));
-  return out;
-}
-
-// ---------------------------------------------------------------------------------------------
-// Run folders
-
-struct Axis {
-  std::string key;
-  std::vector<std::string> values;
-  std::string short_name;  // the key's last parts, enough to tell the axes apart
-};
-
-std::vector<std::string> key_parts(const std::string& key) {
-  std::vector<std::string> parts;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t dot = key.find('.', start);
-    parts.push_back(key.substr(start, dot - start));
-    if (dot == std::string::npos) break;
-    start = dot + 1;
-  }
-  return parts;
-}
-
-void assign_short_names(std::vector<Axis>& axes) {
-  std::size_t depth = 1;
-  while (true) {
-    std::set<std::string> seen;
-    bool unique = true;
-    bool more = false;
-    for (auto& a : axes) {
-      const auto parts = key_parts(a.key);
-      const std::size_t n = std::min(depth, parts.size());
-      if (n < parts.size()) more = true;
-      std::string s;
-      for (std::size_t i = parts.size() - n; i < parts.size(); ++i)
-        s += (s.empty() ? "" : ".") + parts[i];
-      a.short_name = s;
-      unique = seen.insert(s).second && unique;
-    }
-    if (unique || !more) return;
-    ++depth;
-  }
-}
-
-// A folder-name-friendly rendering of a value: brackets, braces, quotes and spaces dropped,
-// anything else unusual replaced by '_'.
-std::string folder_text(const std::string& value) {
-  std::string s;
-  for (char c : value) {
-    if (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '+' ||
-        c == ',' || c == '_')
-      s += c;
-    else if (c == '[' || c == ']' || c == '{' || c == '}' || c == '"' || c == '\'' || c == ' ' ||
-             c == '(' || c == ')')
-      continue;
-    else
-      s += '_';
-  }
-  if (s.size() > 40) s = s.substr(0, 40);
-  if (s.empty()) s = "_";
-  return s;
-}
-
-// ---------------------------------------------------------------------------------------------
-// Results
-
-// The resolved scene a run recorded in its run.log, if any.
-std::optional<std::string> logged_resolved_scene(const fs::path& run_log) {
-  std::ifstream in(run_log, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  const std::string text = ss.str();
-  const std::string begin = "# resolved scene\n", end = "\n# end of resolved scene";
-  const std::size_t a = text.find(begin);
-  if (a == std::string::npos) return std::nullopt;
-  const std::size_t b = text.find(end, a + begin.size());
-  if (b == std::string::npos) return std::nullopt;
-  return text.substr(a + begin.size(), b - a - begin.size());
-}
-
-std::optional<Json> read_summary(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  try {
-    return Json::parse(in);
-  } catch (const std::exception&) {
-    return std::nullopt;
-  }
-}
-
-std::string number_text(const Json& v) {
-  if (v.is_number_integer()) return std::to_string(v.get<long long>());
-  if (v.is_number_unsigned()) return std::to_string(v.get<unsigned long long>());
-  char buf[64];
-  // Shortest text that reads back to the same double.
-  const double d = v.get<double>();
-  for (int prec = 1; prec <= 17; ++prec) {
-    std::snprintf(buf, sizeof buf, "%.*g", prec, d);
-    if (std::strtod(buf, nullptr) == d) break;
-  }
-  return buf;
-}
-
-using Fields = std::vector<std::pair<std::string, std::string>>;
-
-// summary.json flattened to dotted columns: vectors of three as .x/.y/.z, a null restitution as
-// two empty columns (so the columns do not depend on whether a body bounced).
-void flatten(const Json& j, const std::string& prefix, Fields& out) {
-  if (j.is_object()) {
-    for (auto it = j.begin(); it != j.end(); ++it) {
-      if (prefix.empty() && it.key() == "scene") continue;  // the same for every run
-      flatten(it.value(), prefix + it.key() + ".", out);
-    }
-    return;
-  }
-  const std::string name = prefix.substr(0, prefix.size() - 1);
-  if (j.is_array()) {
-    static const char* xyz[] = {"x", "y", "z"};
-    for (std::size_t i = 0; i < j.size(); ++i)
-      flatten(j[i], prefix + (j.size() == 3 ? xyz[i] : std::to_string(i)) + ".", out);
-  } else if (j.is_null()) {
-    if (name.size() >= 26 && name.ends_with("coefficient_of_restitution")) {
-      out.emplace_back(name + ".com", "");
-      out.emplace_back(name + ".kinetic_energy", "");
-    } else {
-      out.emplace_back(name, "");
-    }
-  } else if (j.is_number()) {
-    out.emplace_back(name, number_text(j));
-  } else if (j.is_boolean()) {
-    out.emplace_back(name, j.get<bool>() ? "true" : "false");
-  } else if (j.is_string()) {
-    out.emplace_back(name, j.get<std::string>());
-  }
-}
-
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) {
-    if (c == '"') q += '"';
-    q += c;
-  }
-  return q + "\"";
-}
-
-enum class Outcome { pending, running, skipped, completed, diverged, failed, interrupted };
-
-struct Run {
-  std::vector<std::string> values;  // one per axis
-  std::string name;                 // sub-folder
-  std::string resolved;             // resolved scene
-  Outcome outcome = Outcome::pending;
-  int exit_code = 0;
-  Fields fields;  // flattened summary.json
-  double started = 0.0;
-};
-
-// sweep.csv: the finished runs in sweep order; the columns are the union over them.
-std::string csv_text(const std::vector<Axis>& axes, const std::vector<Run>& runs) {
-  std::vector<std::string> columns;
-  std::set<std::string> known;
-  for (const auto& r : runs) {
-    if (r.outcome == Outcome::pending || r.outcome == Outcome::running) continue;
-    for (const auto& [k, v] : r.fields)
-      if (known.insert(k).second) columns.push_back(k);
-  }
-  std::string out;
-  for (const auto& a : axes) out += csv_field(a.key) + ",";
-  out += "run,exit_code";
-  for (const auto& c : columns) {
-    out += ',';
-    out += csv_field(c);
-  }
-  out += '\n';
-  for (const auto& r : runs) {
-    if (r.outcome == Outcome::pending || r.outcome == Outcome::running) continue;
-    for (const auto& v : r.values) out += csv_field(v) + ",";
-    out += csv_field(r.name) + "," + std::to_string(r.exit_code);
-    std::map<std::string, std::string> m(r.fields.begin(), r.fields.end());
-    for (const auto& c : columns) {
-      out += ",";
-      if (auto it = m.find(c); it != m.end()) out += csv_field(it->second);
-    }
-    out += "\n";
-  }
-  return out;
-}
-
-// ---------------------------------------------------------------------------------------------
-// Processes
+using namespace sweep;
 
 std::atomic<int> g_sweep_signal{0};
 extern "C" void on_sweep_signal(int sig) {
   g_sweep_signal = sig;
 }
 
-int available_cores() {
-  cpu_set_t set;
-  CPU_ZERO(&set);
-  if (sched_getaffinity(0, sizeof set, &set) == 0) return std::max(1, CPU_COUNT(&set));
-  const long n = sysconf(_SC_NPROCESSORS_ONLN);
-  return n > 0 ? static_cast<int>(n) : 1;
-}
-
-// fork + exec; stdout and stderr to `output` ("" keeps them), stdin from /dev/null.
-pid_t spawn(const std::vector<std::string>& args, const std::string& output, bool search_path) {
-  std::vector<char*> argv;
-  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  const pid_t parent = getpid();
-  const pid_t pid = fork();
-  if (pid != 0) return pid;  // parent (or -1)
-  // A sweep that is killed outright takes its runs with it (they write "interrupted").
-  prctl(PR_SET_PDEATHSIG, SIGTERM);
-  if (getppid() != parent) _exit(1);
-  const int in = open("/dev/null", O_RDONLY);
-  if (in >= 0) dup2(in, 0);
-  if (!output.empty()) {
-    const int fd = open(output.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd >= 0) {
-      dup2(fd, 1);
-      dup2(fd, 2);
-    }
-  }
-  if (search_path)
-    execvp(argv[0], argv.data());
-  else
-    execv(argv[0], argv.data());
-  const std::string msg = "cannot start " + args[0] + ": " + std::strerror(errno) + "\n";
-  if (write(2, msg.data(), msg.size()) < 0) {
-  }
-  _exit(127);
-}
-
-int exit_code_of(int status) {
-  if (WIFEXITED(status)) return WEXITSTATUS(status);
-  if (WIFSIGNALED(status)) return 128 + WTERMSIG(status);
-  return 1;
-}
-
-std::string run_label(const std::vector<Axis>& axes, const Run& r) {
-  std::string s;
-  for (std::size_t a = 0; a < axes.size(); ++a)
-    s += (a ? ", " : "") + axes[a].short_name + "=" + r.values[a];
-  return s;
-}
 
 // A value of a --vary key that the scene reader rejected: the reader's message, naming the
 // --vary rather than the --set it was given as.
@@ -443,28 +53,8 @@ std::string run_label(const std::vector<Axis>& axes, const Run& r) {
   throw InputError("value '" + value + "': " + msg, {}, 0, 0, "--vary " + key);
 }
 
-}  // namespace
 
-std::vector<std::string> split_value_list(const std::string& list, const std::string& key) {
-  const auto items = split_top_level(list, key, "--vary " + key + "=" + list);
-  std::vector<std::string> values;
-  for (const auto& item : items) {
-    if (item.empty())
-      throw InputError(
-          "empty value in --vary " + key + "=" + list + " (values are separated by commas)", {}, 0,
-          0, key);
-    if (auto range = expand_range(item, key))
-      values.insert(values.end(), range->begin(), range->end());
-    else
-      values.push_back(item);
-  }
-  std::set<std::string> seen;
-  for (const auto& v : values)
-    if (!seen.insert(v).second)
-      throw InputError("value '" + v + "' appears twice in --vary " + key + "=" + list, {}, 0, 0,
-                       key);
-  return values;
-}
+}  // namespace
 
 int run_sweep(const SweepOptions& opt) {
   using Clock = std::chrono::steady_clock;

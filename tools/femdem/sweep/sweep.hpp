@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "tools/femdem/sweep/value_list.hpp"
+
 namespace femdem {
 
 struct SweepOptions {
@@ -20,14 +22,6 @@ struct SweepOptions {
   std::string femdem_exe;   // the program each run executes (`femdem run ...`)
   std::string plot_script;  // tools/plot_sweep.py; empty or missing: no plots (with a note)
 };
-
-// A --vary value list split into values. Values are separated by commas outside brackets,
-// braces, parentheses and quotes, so arrays need no escaping: "[0,0,-5],[0,0,-10]" is two
-// values. An item "START:STOP:STEP" expands to START, START+STEP, ... up to STOP (inclusive);
-// "linspace(A,B,N)" to N evenly spaced values from A to B; "logspace(A,B,N)" to N values from A
-// to B in geometric progression. Integers stay integers when every number of a range is one.
-// `key` is only used in error messages. Throws InputError.
-std::vector<std::string> split_value_list(const std::string& list, const std::string& key);
 
 // Validates everything (exit code 2 via InputError before any run starts), runs the sweep and
 // returns the exit code: 0 every run completed, 3 some diverged (and none failed otherwise),

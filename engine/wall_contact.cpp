@@ -1,0 +1,108 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "engine/wall_contact.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace femdem {
+namespace {
+using WallLaw = PenaltyWallLaw;  // the law of every wall (contact/penalty_wall_law.hpp)
+}  // namespace
+
+WallContact::WallContact(const Model& m, bool collect_patches)
+    : active_(!m.walls.empty()), collect_patches_(collect_patches) {
+  bool friction = false;
+  for (const Wall& w : m.walls) friction = friction || w.friction > 0.0;
+  if (friction) stick_.assign(3 * m.surface.size() * m.walls.size(), 0.0);
+  stiffness_.assign(m.walls.size(), 0.0);
+  if (collect_patches_) patches_.assign(m.bodies.size() * m.walls.size(), ContactPatch{});
+}
+
+void WallContact::compute(Model& m, double step_dt, std::vector<double>& f, ContactSums& sums) {
+  for (auto& w : m.walls) w.force.setZero();
+  if (collect_patches_) std::fill(patches_.begin(), patches_.end(), ContactPatch{});
+  if (!active_) return;
+  const double* x = m.x.data();
+  const std::size_t nw = m.walls.size();
+  for (std::size_t si = 0; si < m.surface.size(); ++si) {
+    const SurfaceNode& s = m.surface[si];
+    const Body& b = m.bodies[s.body];
+    if (b.fixed) continue;
+    const double E = m.materials[b.material].youngs_modulus;
+    const Vec3 p(x[3 * s.node], x[3 * s.node + 1], x[3 * s.node + 2]);
+    const Vec3 v(m.v[3 * s.node], m.v[3 * s.node + 1], m.v[3 * s.node + 2]);
+    for (std::size_t wi = 0; wi < nw; ++wi) {
+      Wall& w = m.walls[wi];
+      double* slip = stick_.empty() ? nullptr : stick_.data() + 3 * (si * nw + wi);
+      const double k = w.penalty_factor * E * s.area / s.depth;
+      const double d = (w.point - p).dot(w.normal);  // penetration depth
+      // past the end of a bounded wall (a die's mouth) a node is as free as one in front of it
+      if (d <= 0.0 || !w.acts_at(p)) {
+        if (slip) WallLaw::release(k, slip, sums);
+        continue;
+      }
+      if (collect_patches_) {
+        const double fn = k * d;
+        ContactPatch& q = patches_[static_cast<std::size_t>(s.body) * nw + wi];
+        q.force_on_a += fn * w.normal;
+        q.weighted_point += fn * p;
+        q.weight += fn;
+        q.stiffness += k;
+      }
+      const WallContactInput in{.k = k,
+                                .depth = d,
+                                .node_mass = m.mass[s.node],
+                                .damping = w.damping,
+                                .friction = w.friction,
+                                .step_dt = step_dt,
+                                .normal = w.normal,
+                                .v_rel = v - w.step_velocity};
+      const Vec3 fc = WallLaw::apply(in, slip, sums);
+      for (int c = 0; c < 3; ++c) f[3 * s.node + c] += fc[c];
+      w.force -= fc;
+    }
+  }
+}
+
+void WallContact::append_patches(std::vector<ContactPatch>& out) const {
+  const std::size_t nw = stiffness_.size();
+  for (std::size_t i = 0; i < patches_.size(); ++i) {
+    ContactPatch q = patches_[i];
+    if (!(q.weight > 0.0)) continue;
+    q.body_a = static_cast<std::int32_t>(i / nw);
+    q.body_b = ContactPatch::wall_side(i % nw);
+    out.push_back(q);
+  }
+}
+
+double WallContact::stable_step(const Model& m, double dt_element, double dt) {
+  if (!active_) return dt;
+  // A wall adds a spring k to boundary nodes near it; bound the node's frequency by the
+  // element's plus the spring's (omega^2 <= omega_e^2 + k/m).
+  const double omega_el = 2.0 / dt_element;
+  std::fill(stiffness_.begin(), stiffness_.end(), 0.0);
+  for (const SurfaceNode& s : m.surface) {
+    const Body& b = m.bodies[s.body];
+    if (b.fixed) continue;
+    const Vec3 p(m.x[3 * s.node], m.x[3 * s.node + 1], m.x[3 * s.node + 2]);
+    for (std::size_t wi = 0; wi < m.walls.size(); ++wi) {
+      const Wall& w = m.walls[wi];
+      if ((p - w.point).dot(w.normal) > s.depth) continue;
+      const double k = w.penalty_factor * m.materials[b.material].youngs_modulus * s.area / s.depth;
+      stiffness_[wi] += k;
+      // a damping ratio xi shrinks the stable step by sqrt(1 + xi^2) - xi
+      const double xi = w.damping;
+      dt = std::min(dt, 2.0 * (std::sqrt(1.0 + xi * xi) - xi) /
+                            std::sqrt(omega_el * omega_el + k / m.mass[s.node]));
+    }
+  }
+  // A force-driven wall is a mass on the contact springs of every node near it (in parallel):
+  // its own frequency must be resolved too. (The nodes' bound above counts each spring on its
+  // node's side.)
+  for (std::size_t wi = 0; wi < m.walls.size(); ++wi)
+    if (m.walls[wi].force_driven() && stiffness_[wi] > 0.0)
+      dt = std::min(dt, 2.0 / std::sqrt(stiffness_[wi] / m.walls[wi].mass));
+  return dt;
+}
+
+}  // namespace femdem

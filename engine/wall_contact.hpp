@@ -1,0 +1,35 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// Bodies on rigid walls: every boundary node of a free body against every wall, with the node's
+// penalty k = penalty_factor E A / h (its boundary area share A and the depth h of the element
+// behind it), through the wall law (contact/penalty_wall_law.hpp). Holds the friction spring of
+// each (node, wall), the per-(body, wall) patches for impact damping, and each wall's contact
+// stiffness for the step of force-driven walls. Serial in node order: the sums are
+// deterministic.
+#include <vector>
+
+#include "engine/contact_model.hpp"
+
+namespace femdem {
+
+class WallContact final : public ContactModel {
+ public:
+  WallContact(const Model& m, bool collect_patches);
+
+  bool active() const override { return active_; }
+  void compute(Model& m, double step_dt, std::vector<double>& f, ContactSums& sums) override;
+  void append_patches(std::vector<ContactPatch>& out) const override;
+  // Per node near a wall (within one element depth) the element's frequency plus the spring's,
+  // with the dashpot's shrink factor; and each force-driven wall's own frequency on the springs.
+  double stable_step(const Model& m, double dt_element, double dt) override;
+
+ private:
+  bool active_ = false;
+  bool collect_patches_ = false;
+  // Tangential spring stretch (3) per (surface node, wall); empty when no wall has friction.
+  std::vector<double> stick_;
+  std::vector<ContactPatch> patches_;  // per (body, wall), body-major
+  std::vector<double> stiffness_;      // per wall: the contact stiffness near it
+};
+
+}  // namespace femdem
