@@ -202,8 +202,11 @@ void append_values(std::span<const OutputEntry<S>> table, const S& s, std::vecto
   for (const OutputEntry<S>& c : table) row.push_back(c.value(s));
 }
 
+// One Markdown table of columns under its title.
 template <class S>
-void append_rows(std::string& md, std::span<const OutputEntry<S>> table, const char* prefix) {
+void append_table(std::string& md, const char* title, std::span<const OutputEntry<S>> table,
+                  const char* prefix) {
+  md += std::string(md.empty() ? "" : "\n") + title + "\n\n| column | unit | meaning |\n|---|---|---|\n";
   for (const OutputEntry<S>& c : table)
     md += std::string("| `") + prefix + c.name + "` | " + c.unit + " | " + c.meaning + " |\n";
 }
@@ -242,22 +245,13 @@ std::vector<std::pair<std::string, double>> summary_extra(const RunRecord& run) 
 
 std::string output_tables_markdown() {
   std::string md;
-  const char* head = "| column | unit | meaning |\n|---|---|---|\n";
-  md += "Every run:\n\n";
-  md += head;
-  append_rows<Run>(md, kRunColumns, "");
-  md += "\nThen for every body, in the scene's order:\n\n";
-  md += head;
-  append_rows<BodySample>(md, kBodyColumns, "<body>.");
-  md += "\nThen for every wall, in the scene's order:\n\n";
-  md += head;
-  append_rows<WallSample>(md, kWallColumns, "<wall>.");
-  md += "\nThen, when bodies can touch each other:\n\n";
-  md += head;
-  append_rows<Run>(md, kContactColumns, "");
-  md += "\nThen, for scenes with `[compaction]`:\n\n";
-  md += head;
-  append_rows<Compaction>(md, kCompactionColumns, "");
+  append_table<Run>(md, "Every run:", kRunColumns, "");
+  append_table<BodySample>(md, "Then for every body, in the scene's order:", kBodyColumns,
+                           "<body>.");
+  append_table<WallSample>(md, "Then for every wall, in the scene's order:", kWallColumns,
+                           "<wall>.");
+  append_table<Run>(md, "Then, when bodies can touch each other:", kContactColumns, "");
+  append_table<Compaction>(md, "Then, for scenes with `[compaction]`:", kCompactionColumns, "");
   md += "\nsummary.json `extra`:\n\n| key | unit | meaning | written when |\n|---|---|---|---|\n";
   for (const SummaryKey& k : kSummaryKeys)
     md += std::string("| `") + k.name + "` | " + k.unit + " | " + k.meaning + " | " + k.when +

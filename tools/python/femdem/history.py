@@ -12,7 +12,8 @@ killed reads as the rows written so far.
 
 numpy is needed here (imported when a file is read).
 """
-import os
+
+from ._paths import file_in
 
 HISTORY_FILE = "history.csv"
 
@@ -36,9 +37,7 @@ COMPACTION_PREFIX = "compaction."
 
 def history_path(path_or_run_dir):
     """The path of history.csv: `path_or_run_dir` itself, or history.csv in it if a folder."""
-    if os.path.isdir(path_or_run_dir):
-        return os.path.join(path_or_run_dir, HISTORY_FILE)
-    return os.fspath(path_or_run_dir)
+    return file_in(path_or_run_dir, HISTORY_FILE)
 
 
 def read_history(path_or_run_dir):

@@ -23,7 +23,8 @@ and -1 is the last complete frame.
 
 h5py and numpy are needed here (imported when a file is opened).
 """
-import os
+
+from ._paths import file_in
 
 RESULTS_FILE = "results.h5"
 #: Fields with one value (or vector) per node.
@@ -36,9 +37,7 @@ STRESS_COMPONENTS = ("xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz")
 
 def results_path(path_or_run_dir):
     """The path of results.h5: `path_or_run_dir` itself, or results.h5 in it if a folder."""
-    if os.path.isdir(path_or_run_dir):
-        return os.path.join(path_or_run_dir, RESULTS_FILE)
-    return os.fspath(path_or_run_dir)
+    return file_in(path_or_run_dir, RESULTS_FILE)
 
 
 def _text(value):

@@ -10,16 +10,15 @@ interrupted), so it is either absent (a run still going, or killed) or whole. It
 Needs only the standard library.
 """
 import json
-import os
+
+from ._paths import file_in
 
 SUMMARY_FILE = "summary.json"
 
 
 def summary_path(path_or_run_dir):
     """The path of summary.json: `path_or_run_dir` itself, or summary.json in it if a folder."""
-    if os.path.isdir(path_or_run_dir):
-        return os.path.join(path_or_run_dir, SUMMARY_FILE)
-    return os.fspath(path_or_run_dir)
+    return file_in(path_or_run_dir, SUMMARY_FILE)
 
 
 def read_summary(path_or_run_dir):

@@ -11,16 +11,15 @@ for a failed run or a null in its summary.
 Needs only the standard library.
 """
 import csv
-import os
+
+from ._paths import file_in
 
 SWEEP_FILE = "sweep.csv"
 
 
 def sweep_path(path_or_sweep_dir):
     """The path of sweep.csv: `path_or_sweep_dir` itself, or sweep.csv in it if a folder."""
-    if os.path.isdir(path_or_sweep_dir):
-        return os.path.join(path_or_sweep_dir, SWEEP_FILE)
-    return os.fspath(path_or_sweep_dir)
+    return file_in(path_or_sweep_dir, SWEEP_FILE)
 
 
 def read_sweep(path_or_sweep_dir):
