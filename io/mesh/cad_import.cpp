@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Surface import through assimp (the only file that includes it): see io/cad_mesh.hpp.
+// Surface import through assimp (the only file that includes it): see io/mesh/cad_mesh.hpp.
 #include <assimp/importerdesc.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>

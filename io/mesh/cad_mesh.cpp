@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Surface checks and repair (CGAL Polygon_mesh_processing) and volume meshing (CGAL Mesh_3):
-// see io/cad_mesh.hpp. This is the only translation unit that includes CGAL, because CGAL
+// see io/mesh/cad_mesh.hpp. This is the only translation unit that includes CGAL, because CGAL
 // headers take minutes to compile; keep it that way.
 #include "io/mesh/cad_mesh.hpp"
 

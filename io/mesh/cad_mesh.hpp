@@ -2,12 +2,12 @@
 #pragma once
 // CAD surfaces -> TET10 volume meshes.
 //
-//  1. import_surface (io/cad_import.cpp, assimp): any format assimp reads (STL ASCII and
+//  1. import_surface (io/mesh/cad_import.cpp, assimp): any format assimp reads (STL ASCII and
 //     binary, OBJ, PLY, OFF, glTF, 3MF, ...) becomes one indexed triangle surface; node
 //     transforms of the file are applied, points and lines are ignored, polygons triangulated,
 //     coordinates multiplied by `scale`, and vertices closer than merge_tolerance x (bounding
 //     box diagonal) merged.
-//  2. mesh_surface (io/cad_mesh.cpp, the only file that includes CGAL): the surface is checked
+//  2. mesh_surface (io/mesh/cad_mesh.cpp, the only file that includes CGAL): the surface is checked
 //     and repaired with CGAL Polygon_mesh_processing (degenerate and duplicate triangles
 //     dropped, orientation made consistent and outward), then must be closed, edge- and
 //     vertex-manifold and free of self-intersections; it is then meshed with CGAL Mesh_3
@@ -27,7 +27,7 @@
 namespace femdem {
 
 // Changes whenever the meshing code changes its output for the same input and options; it is
-// part of the mesh cache key (io/mesh_cache.hpp), so old cached meshes are not reused.
+// part of the mesh cache key (io/mesh/mesh_cache.hpp), so old cached meshes are not reused.
 inline constexpr int kCadMesherVersion = 1;
 
 struct TriangleSurface {

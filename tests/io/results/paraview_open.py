@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-# Run by pvbatch from tests/test_paraview.cpp: opens a femdem results.xdmf with ParaView's XDMF
+# Run by pvbatch from tests/io/results/test_paraview.cpp: opens a femdem results.xdmf with ParaView's XDMF
 # reader and prints what a user would see: time steps, cell type, fields and their ranges.
 import sys
 
