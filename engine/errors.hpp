@@ -24,8 +24,15 @@ struct InputError : std::runtime_error {
     std::string s;
     if (!file.empty()) {
       s += file;
-      if (line > 0) s += ":" + std::to_string(line);
-      if (line > 0 && column > 0) s += ":" + std::to_string(column);
+      // appended piece by piece: GCC 12 warns (-Wrestrict, a false positive) on ":" + string
+      if (line > 0) {
+        s += ':';
+        s += std::to_string(line);
+      }
+      if (line > 0 && column > 0) {
+        s += ':';
+        s += std::to_string(column);
+      }
       s += ": ";
     }
     if (!key.empty()) s += key + ": ";

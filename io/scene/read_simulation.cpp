@@ -1,0 +1,105 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <cmath>
+
+#include "io/scene/toml_reader.hpp"
+
+namespace femdem::scene {
+
+// ---------------------------------------------------------------------------------------------
+// Sections
+
+void Reader::read_simulation(const toml::table& root, ModelSpec& spec, toml::table& out) const {
+  const toml::node* n = root.get("simulation");
+  if (!n) fail(&root, "simulation", "required table [simulation] is missing (it needs end_time)");
+  const toml::table& t = require_table(n, "simulation");
+  const std::string p = "simulation";
+  check_keys(t, p,
+             {"end_time", "time_step_safety", "time_step", "output_interval", "history_interval",
+              "gravity", "threads", "bulk_viscosity_linear", "bulk_viscosity_quadratic",
+              "mass_scaling_time_step", "mass_scaling_limit", "deformation_damping",
+              "rest_kinetic_fraction", "rest_hold_time"});
+  SimulationSettings& s = spec.simulation;
+  s.end_time = positive(t, "end_time", p, std::nullopt, &t);
+  s.time_step_safety = positive(t, "time_step_safety", p, s.time_step_safety, &t);
+  if (s.time_step_safety > 1.0)
+    fail(t.get("time_step_safety"), "simulation.time_step_safety",
+         "must be in (0, 1] (a fraction of the stable time step), got " +
+             format_number(s.time_step_safety));
+  s.time_step = positive(t, "time_step", p, 0.0, &t);
+  s.output_interval = positive(t, "output_interval", p, s.end_time / 50.0, &t);
+  s.history_interval = positive(t, "history_interval", p, s.output_interval / 20.0, &t);
+  if (auto g = opt_vec3(t, "gravity", p)) s.gravity = *g;
+  if (auto th = opt_integer(t, "threads", p)) {
+    if (*th < 0 || *th > 4096)
+      fail(t.get("threads"), "simulation.threads",
+           "must be 0 (all cores) or a positive number of threads, got " + std::to_string(*th));
+    s.threads = static_cast<int>(*th);
+  }
+  for (const char* key : {"bulk_viscosity_linear", "bulk_viscosity_quadratic"}) {
+    const double v = number(t, key, p, 0.0, &t);
+    if (v < 0.0 || v > 10.0)
+      fail(t.get(key), dotted(p, key), "must lie in [0, 10], got " + format_number(v));
+    (std::string(key) == "bulk_viscosity_linear" ? s.bulk_viscosity_linear
+                                                 : s.bulk_viscosity_quadratic) = v;
+  }
+  s.mass_scaling_time_step = number(t, "mass_scaling_time_step", p, 0.0, &t);
+  if (s.mass_scaling_time_step < 0.0)
+    fail(t.get("mass_scaling_time_step"), "simulation.mass_scaling_time_step",
+         "must be 0 (off) or a positive time step, got " + format_number(s.mass_scaling_time_step));
+  if (s.mass_scaling_time_step > 0.0 && s.time_step > 0.0)
+    fail(t.get("mass_scaling_time_step"), "simulation.mass_scaling_time_step",
+         "works with the automatic step only: remove simulation.time_step (the step is then "
+         "never below mass_scaling_time_step)");
+  if (const toml::node* dn = t.get("deformation_damping")) {
+    // { ratio = xi, frequency = f }: alpha = 2 xi omega makes the mode at f damped at xi
+    const toml::table& d = require_table(dn, "simulation.deformation_damping");
+    const std::string dp = "simulation.deformation_damping";
+    check_keys(d, dp, {"ratio", "frequency"});
+    const double ratio = number(d, "ratio", dp, std::nullopt, &d);
+    if (ratio < 0.0 || ratio > 1.0)
+      fail(d.get("ratio"), dotted(dp, "ratio"),
+           "must be a fraction of critical damping in [0, 1], got " + format_number(ratio));
+    const double frequency = positive(d, "frequency", dp, std::nullopt, &d);
+    s.deformation_damping = 4.0 * M_PI * frequency * ratio;
+    toml::table o;
+    o.insert_or_assign("ratio", ratio);
+    o.insert_or_assign("frequency", frequency);
+    out.insert_or_assign("deformation_damping", std::move(o));
+  }
+  s.rest_kinetic_fraction = number(t, "rest_kinetic_fraction", p, 0.0, &t);
+  if (s.rest_kinetic_fraction < 0.0 || s.rest_kinetic_fraction >= 1.0)
+    fail(t.get("rest_kinetic_fraction"), "simulation.rest_kinetic_fraction",
+         "must be 0 (off) or a fraction of the peak kinetic energy in (0, 1), got " +
+             format_number(s.rest_kinetic_fraction));
+  s.rest_hold_time = number(t, "rest_hold_time", p, 0.0, &t);
+  if (s.rest_hold_time < 0.0)
+    fail(t.get("rest_hold_time"), "simulation.rest_hold_time",
+         "must not be negative, got " + format_number(s.rest_hold_time));
+  s.mass_scaling_limit = positive(t, "mass_scaling_limit", p, s.mass_scaling_limit, &t);
+  if (t.get("mass_scaling_limit") && s.mass_scaling_time_step == 0.0)
+    fail(t.get("mass_scaling_limit"), "simulation.mass_scaling_limit",
+         "needs simulation.mass_scaling_time_step (mass scaling is off)");
+  if (t.get("rest_hold_time") && s.rest_kinetic_fraction == 0.0)
+    fail(t.get("rest_hold_time"), "simulation.rest_hold_time",
+         "needs simulation.rest_kinetic_fraction (the stop-at-rest threshold)");
+  out.insert_or_assign("end_time", s.end_time);
+  out.insert_or_assign("time_step_safety", s.time_step_safety);
+  if (s.time_step > 0.0) out.insert_or_assign("time_step", s.time_step);
+  out.insert_or_assign("output_interval", s.output_interval);
+  out.insert_or_assign("history_interval", s.history_interval);
+  out.insert_or_assign("gravity", toml::array{s.gravity.x(), s.gravity.y(), s.gravity.z()});
+  out.insert_or_assign("threads", s.threads);
+  out.insert_or_assign("bulk_viscosity_linear", s.bulk_viscosity_linear);
+  out.insert_or_assign("bulk_viscosity_quadratic", s.bulk_viscosity_quadratic);
+  if (s.mass_scaling_time_step > 0.0) {
+    out.insert_or_assign("mass_scaling_time_step", s.mass_scaling_time_step);
+    out.insert_or_assign("mass_scaling_limit", s.mass_scaling_limit);
+  }
+  if (s.rest_kinetic_fraction > 0.0) {
+    out.insert_or_assign("rest_kinetic_fraction", s.rest_kinetic_fraction);
+    out.insert_or_assign("rest_hold_time",
+                         s.rest_hold_time > 0.0 ? s.rest_hold_time : s.output_interval);
+  }
+}
+
+}  // namespace femdem::scene

@@ -1,0 +1,126 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// The scene reader's internals (io/scene/*.cpp only; the public interface is scene_reader.hpp).
+// Reader walks the TOML tree of a scene after the --set overrides are applied, checks it and
+// fills the ModelSpec and the resolved scene. Its generic helpers (toml_reader.cpp) look values
+// up by key and throw InputError naming the file, line, column and dotted key; every section has
+// its reader in its own file (read_simulation.cpp, read_materials.cpp, read_bodies.cpp,
+// read_walls.cpp, read_packings.cpp, read_compaction.cpp), the overrides are in overrides.cpp,
+// and Reader::read (scene_reader.cpp) calls the sections in order.
+#include <toml++/toml.h>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "engine/model_spec.hpp"
+#include "io/packing/packing.hpp"
+
+namespace femdem::scene {
+
+// ---------------------------------------------------------------------------------------------
+// Small helpers
+
+// " (did you mean 'xxx'?)" for the closest candidate within a few edits, else "".
+std::string did_you_mean(std::string_view word, const std::vector<std::string>& candidates);
+std::string join(const std::vector<std::string>& items, std::string_view sep = ", ");
+std::string trim(std::string_view s);
+std::string lower(std::string s);
+// "a table", "an array", "a string", ... for messages.
+std::string type_name(const toml::node& n);
+// Shortest round-trip form.
+std::string format_number(double v);
+
+// ---------------------------------------------------------------------------------------------
+// The reader: walks the (overridden) TOML tree, checks it, fills the ModelSpec and the resolved
+// scene.
+
+class Reader {
+ public:
+  Reader(std::string scene_path, std::filesystem::path base_dir)
+      : scene_path_(std::move(scene_path)), base_dir_(std::move(base_dir)) {}
+
+  void apply_override(toml::table& root, const std::string& text);
+  ModelSpec read(const toml::table& root, const std::string& stem, toml::table& resolved);
+
+ private:
+  struct Location {
+    std::string file;
+    int line = 0, column = 0;
+    std::string note;  // " (set by --set ...)" for values from the command line
+  };
+
+  Location locate(const toml::node* node) const;
+  Location locate(const toml::source_region& region, const toml::node* fallback) const;
+  [[noreturn]] void fail(const toml::node* node, const std::string& key,
+                         const std::string& message) const;
+  [[noreturn]] void fail_at(const Location& at, const std::string& key,
+                            const std::string& message) const;
+
+  static std::string dotted(const std::string& prefix, std::string_view key) {
+    return prefix.empty() ? std::string(key) : prefix + "." + std::string(key);
+  }
+
+  // Unknown keys are reported first, so that a typo is not also reported as a missing value.
+  void check_keys(const toml::table& t, const std::string& prefix,
+                  const std::vector<std::string>& allowed, const std::string& context = {}) const;
+  const toml::table& require_table(const toml::node* n, const std::string& key) const;
+
+  std::optional<double> opt_number(const toml::table& t, std::string_view k,
+                                   const std::string& prefix) const;
+  double number(const toml::table& t, std::string_view k, const std::string& prefix,
+                std::optional<double> def, const toml::node* owner) const;
+  double positive(const toml::table& t, std::string_view k, const std::string& prefix,
+                  std::optional<double> def, const toml::node* owner) const;
+  std::optional<std::string> opt_string(const toml::table& t, std::string_view k,
+                                        const std::string& prefix) const;
+  std::string string(const toml::table& t, std::string_view k, const std::string& prefix,
+                     const toml::node* owner) const;
+  std::optional<Vec3> opt_vec3(const toml::table& t, std::string_view k,
+                               const std::string& prefix) const;
+  bool boolean(const toml::table& t, std::string_view k, const std::string& prefix, bool def) const;
+  class MaterialTable;  // a [[materials]] entry as materials/material_keys.hpp sees it
+  std::optional<std::int64_t> opt_integer(const toml::table& t, std::string_view k,
+                                          const std::string& prefix) const;
+
+  // The tables of an array of tables, with their error-key prefixes ("bodies.ball" or
+  // "bodies[2]" while the name is missing).
+  std::vector<std::pair<const toml::table*, std::string>> entries(const toml::table& root,
+                                                                  const std::string& key) const;
+  std::string entry_name(const toml::table& t, const std::string& prefix,
+                         std::set<std::string>& taken, const std::string& what,
+                         std::optional<std::string> def = {}) const;
+
+  void read_simulation(const toml::table& root, ModelSpec& spec, toml::table& out) const;
+  void read_materials(const toml::table& root, ModelSpec& spec, toml::array& out) const;
+  void read_bodies(const toml::table& root, ModelSpec& spec, toml::array& out,
+                   std::set<std::string>& names) const;
+  Tet10Mesh read_mesh(const toml::table& mesh, const std::string& prefix, toml::table& out) const;
+  void read_walls(const toml::table& root, ModelSpec& spec, toml::array& out,
+                  std::set<std::string>& names) const;
+  void read_constraints(const toml::table& root, ModelSpec& spec, toml::array& out) const;
+  RegionSpec read_region(const toml::table& c, const std::string& prefix, toml::table& out) const;
+  void read_contact(const toml::table& root, ModelSpec& spec, toml::table& out) const;
+  void read_compaction(const toml::table& root, ModelSpec& spec, toml::table& out,
+                       std::set<std::string>& names) const;
+  // [[packings]]: one body per particle of a packing file or generated packing.
+  void read_packings(const toml::table& root, ModelSpec& spec, toml::array& out,
+                     std::set<std::string>& names) const;
+  PackingParams read_packing_params(const toml::table& g, const std::string& prefix,
+                                    toml::table& out) const;
+
+  std::string scene_path_;
+  std::filesystem::path base_dir_;
+  std::map<const toml::node*, std::string> override_nodes_;  // nodes created by --set
+
+ public:
+  // What happened while reading that the user should see in the log (CAD meshing, cache).
+  mutable std::vector<std::string> notes_;
+};
+
+}  // namespace femdem::scene
