@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "engine/body_contact.hpp"
-#include "engine/wall_contact.hpp"
 #include "engine/contact_patch.hpp"
 #include "engine/impact_damping.hpp"
 #include "engine/model.hpp"
+#include "engine/wall_contact.hpp"
 #include "materials/material_params.hpp"
 
 namespace femdem {

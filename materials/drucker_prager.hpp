@@ -140,8 +140,7 @@ inline DruckerPrager make_drucker_prager(const MaterialBase& e, const DruckerPra
   return d;
 }
 
-inline std::string drucker_prager_param_error(const MaterialBase& e,
-                                              const DruckerPragerParams& m) {
+inline std::string drucker_prager_param_error(const MaterialBase& e, const DruckerPragerParams& m) {
   if (!(m.friction_angle >= 0.0 && m.friction_angle < 90.0))
     return "friction_angle must lie in [0, 90) degrees";
   if (!(m.dilatancy_angle >= 0.0 && m.dilatancy_angle <= m.friction_angle))
@@ -190,8 +189,9 @@ struct DruckerPragerMaterial {
     return m;
   }
   static std::string describe(const MaterialBase&, const Params& m) {
-    return describe_frictional(m) + "    cone matched to Mohr-Coulomb: " +
-           drucker_prager_cone_name(m.cone) + "\n" + describe_cohesion_hardening(m);
+    return describe_frictional(m) +
+           "    cone matched to Mohr-Coulomb: " + drucker_prager_cone_name(m.cone) + "\n" +
+           describe_cohesion_hardening(m);
   }
 };
 

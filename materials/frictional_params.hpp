@@ -28,17 +28,16 @@ inline std::vector<std::string> frictional_keys() {
 // hardening/softening; each checked on its own (the model checks the combination).
 inline void read_frictional(MaterialKeys& k, FrictionalParams& m) {
   m.cohesion = k.number("cohesion");
-  if (!(m.cohesion >= 0.0))
-    k.fail("cohesion", "must be >= 0, got " + format_shortest(m.cohesion));
+  if (!(m.cohesion >= 0.0)) k.fail("cohesion", "must be >= 0, got " + format_shortest(m.cohesion));
   m.friction_angle = k.number("friction_angle");
   if (!(m.friction_angle >= 0.0 && m.friction_angle < 90.0))
     k.fail("friction_angle",
            "must lie in [0, 90) degrees, got " + format_shortest(m.friction_angle));
   m.dilatancy_angle = k.number("dilatancy_angle", m.friction_angle);
   if (!(m.dilatancy_angle >= 0.0 && m.dilatancy_angle <= m.friction_angle))
-    k.fail("dilatancy_angle", "must lie in [0, friction_angle = " +
-                                  format_shortest(m.friction_angle) + "] degrees, got " +
-                                  format_shortest(m.dilatancy_angle));
+    k.fail("dilatancy_angle",
+           "must lie in [0, friction_angle = " + format_shortest(m.friction_angle) +
+               "] degrees, got " + format_shortest(m.dilatancy_angle));
   if (m.friction_angle == 0.0 && m.cohesion == 0.0)
     k.fail("cohesion", "and friction_angle are both 0: the material has no strength");
   m.cohesion_hardening_modulus = k.number("cohesion_hardening_modulus", 0.0);

@@ -45,7 +45,7 @@ using MaterialKernel = MaterialModels::Kernel;       // its compiled return mapp
 // Calls f(Model{}) for the model at `index` of the list (the variant index of its Params).
 template <class F>
 decltype(auto) with_material_model(std::size_t index, F&& f) {
-  return [&]<std::size_t... I>(std::index_sequence<I...>) -> decltype(auto) {
+  return [&]<std::size_t... I>(std::index_sequence<I...>)->decltype(auto) {
     using R = decltype(f(std::tuple_element_t<0, MaterialModels::Tuple>{}));
     if constexpr (std::is_void_v<R>) {
       ((index == I ? (f(std::tuple_element_t<I, MaterialModels::Tuple>{}), true) : false) || ...);
@@ -55,7 +55,8 @@ decltype(auto) with_material_model(std::size_t index, F&& f) {
        ...);
       return out;
     }
-  }(std::make_index_sequence<MaterialModels::size>{});
+  }
+  (std::make_index_sequence<MaterialModels::size>{});
 }
 
 // The scene names of the models, in registry order.

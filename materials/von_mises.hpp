@@ -249,7 +249,7 @@ struct VonMisesMaterial {
   using Params = VonMisesParams;
   using Kernel = VonMises;
   static std::vector<std::string> keys() {
-    return {"yield_stress", "hardening_modulus", "hardening_curve",      "swift_k",
+    return {"yield_stress", "hardening_modulus", "hardening_curve",  "swift_k",
             "swift_eps0",   "swift_n",           "rate_coefficient", "reference_strain_rate"};
   }
   static std::string check(const MaterialBase&, const Params& p) {
@@ -276,7 +276,8 @@ struct VonMisesMaterial {
                   "each point must be [equivalent_plastic_strain, stress] (two numbers)");
       k.record("hardening_curve", m.hardening_curve);
       if (k.has("yield_stress"))
-        k.fail("yield_stress", "is given by the first point of 'hardening_curve'; remove one of them");
+        k.fail("yield_stress",
+               "is given by the first point of 'hardening_curve'; remove one of them");
       m.yield_stress = m.hardening_curve.front().second;
     } else if (has_swift) {
       m.hardening = HardeningLaw::Swift;

@@ -15,8 +15,8 @@ namespace femdem::scene {
 namespace fs = std::filesystem;
 
 // ---------------------------------------------------------------------------------------------
-// [[packings]] (io/packing/packing.hpp): a packing file, or generator parameters (optionally cached in
-// a file), turned into one body per particle with a shared material and mesh.
+// [[packings]] (io/packing/packing.hpp): a packing file, or generator parameters (optionally cached
+// in a file), turned into one body per particle with a shared material and mesh.
 
 PackingParams Reader::read_packing_params(const toml::table& g, const std::string& gp,
                                           toml::table& out) const {

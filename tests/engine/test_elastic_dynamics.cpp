@@ -43,7 +43,8 @@ TEST(ElasticDynamics, BarVibrationPeriodAmplitudeAndEnergy) {
   b.mesh = test::kuhn_box(20, 1, 1, Vec3(10.0, 1.0, 1.0));
   s.bodies.push_back(b);
   s.constraints.push_back(constraint(RegionSpec::Kind::All, {false, true, true}));
-  s.constraints.push_back(constraint(RegionSpec::Kind::Box, {true, true, true}, Vec3(-1, -1, -1), Vec3(0, 2, 2)));
+  s.constraints.push_back(
+      constraint(RegionSpec::Kind::Box, {true, true, true}, Vec3(-1, -1, -1), Vec3(0, 2, 2)));
   s.simulation.end_time = 40.0;
   Model m = build_model(s);
   const double v0 = 1e-3, L = 10.0, c = 10.0;
@@ -52,7 +53,9 @@ TEST(ElasticDynamics, BarVibrationPeriodAmplitudeAndEnergy) {
   // tip node: the x = L corner at y = z = 0
   int tip = -1;
   for (int n = 0; n < m.node_count; ++n)
-    if (std::fabs(m.X[3 * n] - L) < 1e-12 && std::fabs(m.X[3 * n + 1]) < 1e-12 && std::fabs(m.X[3 * n + 2]) < 1e-12) tip = n;
+    if (std::fabs(m.X[3 * n] - L) < 1e-12 && std::fabs(m.X[3 * n + 1]) < 1e-12 &&
+        std::fabs(m.X[3 * n + 2]) < 1e-12)
+      tip = n;
   ASSERT_GE(tip, 0);
   Simulation sim(std::move(m));
   const double E0 = sim.energies().kinetic;
@@ -72,8 +75,9 @@ TEST(ElasticDynamics, BarVibrationPeriodAmplitudeAndEnergy) {
   ASSERT_GE(downward_crossings.size(), 9u);
   const double period = (downward_crossings.back() - downward_crossings.front()) /
                         static_cast<double>(downward_crossings.size() - 1);
-  std::printf("bar: period %.5f (4.0), tip amplitude %.6g (%.6g), energy error %.3g %%, steps %lld\n",
-              period, umax, 0.63662 * v0 * L / c, 100 * max_err, static_cast<long long>(sim.steps()));
+  std::printf(
+      "bar: period %.5f (4.0), tip amplitude %.6g (%.6g), energy error %.3g %%, steps %lld\n",
+      period, umax, 0.63662 * v0 * L / c, 100 * max_err, static_cast<long long>(sim.steps()));
   EXPECT_NEAR(period, 4.0, 0.01 * 4.0);
   EXPECT_NEAR(umax, 2.0 / M_PI * v0 * L / c, 0.01 * 2.0 / M_PI * v0 * L / c);
   EXPECT_LT(max_err, 0.005);
@@ -115,9 +119,9 @@ TEST_P(OscillatingCube, ConservesEnergy) {
     max_err = std::max(max_err, std::fabs(e.kinetic + e.internal - E0) / E0);
     max_internal = std::max(max_internal, e.internal);
   }
-  std::printf("cube (F-bar %s): energy error %.4f %%, peak elastic energy %.1f J of %.1f J, %lld steps\n",
-              to_string(GetParam()), 100 * max_err, max_internal, E0,
-              static_cast<long long>(sim.steps()));
+  std::printf(
+      "cube (F-bar %s): energy error %.4f %%, peak elastic energy %.1f J of %.1f J, %lld steps\n",
+      to_string(GetParam()), 100 * max_err, max_internal, E0, static_cast<long long>(sim.steps()));
   EXPECT_GT(max_internal, 0.9 * E0);  // it really oscillates
   EXPECT_LT(max_err, 0.003);
   EXPECT_LT(std::fabs(sim.balance_error()), 0.003);

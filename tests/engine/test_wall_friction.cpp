@@ -58,10 +58,11 @@ TEST(WallFriction, SlidingBlockStopsAtTheRigidBodyDistance) {
   const BodyState b = sim.body_motion(0);
   const double distance = b.com.x() - x0, expected = v0 * v0 / (2.0 * mu * g);
   const Energies e = sim.energies();
-  std::printf("v at t_stop/2 %.4f (rigid %.4f); distance %.5f m (rigid %.5f); v end %.2e; "
-              "friction+damping work %.4g J of %.4g J; balance %.2e\n",
-              v_half, 0.5 * v0, distance, expected, b.vcom.x(), e.contact_dissipation,
-              e.external_work + 0.5 * sim.body_motion(0).mass * v0 * v0, sim.balance_error());
+  std::printf(
+      "v at t_stop/2 %.4f (rigid %.4f); distance %.5f m (rigid %.5f); v end %.2e; "
+      "friction+damping work %.4g J of %.4g J; balance %.2e\n",
+      v_half, 0.5 * v0, distance, expected, b.vcom.x(), e.contact_dissipation,
+      e.external_work + 0.5 * sim.body_motion(0).mass * v0 * v0, sim.balance_error());
   EXPECT_NEAR(v_half, 0.5 * v0, 0.03 * v0);
   EXPECT_NEAR(distance, expected, 0.03 * expected);
   EXPECT_LT(std::fabs(b.vcom.x()), 0.01 * v0);  // stopped, and stays stopped

@@ -260,7 +260,8 @@ TEST(MohrCoulombHardening, SofteningReachesResidualCohesion) {
 TEST(MohrCoulombParams, RejectsSnapBackSoftening) {
   McMaterial mat = thesis_mc(30.0);
   mat.cohesion_hardening_modulus = -1e12;
-  EXPECT_NE(mohr_coulomb_param_error(mat, mat).find("cohesion_hardening_modulus"), std::string::npos);
+  EXPECT_NE(mohr_coulomb_param_error(mat, mat).find("cohesion_hardening_modulus"),
+            std::string::npos);
   mat.cohesion_hardening_modulus = 0.0;
   mat.dilatancy_angle = 40.0;
   EXPECT_NE(mohr_coulomb_param_error(mat, mat).find("dilatancy_angle"), std::string::npos);

@@ -107,7 +107,8 @@ TEST(PiecewiseDruckerPrager, ReturnsLandOnTheRightPiece) {
 // is needed, sec. 5.8.2): trials moving smoothly through every corner's wedge give returned
 // stresses that move smoothly.
 TEST(PiecewiseDruckerPrager, ContinuousAcrossCorners) {
-  const auto d = make_piecewise_drucker_prager(concrete(kTable56, 0.035), concrete(kTable56, 0.035));
+  const auto d =
+      make_piecewise_drucker_prager(concrete(kTable56, 0.035), concrete(kTable56, 0.035));
   const double K = d.K, G = d.G;
   const int n = 100000;
   double worst = 0.0;
@@ -137,7 +138,8 @@ TEST(PiecewiseDruckerPrager, ContinuousAcrossCorners) {
 // One piece is the plain Drucker-Prager cone with eta = A, xi c = B, eta_bar = A_bar.
 TEST(PiecewiseDruckerPrager, OnePieceEqualsDruckerPrager) {
   for (const double dil : {0.0, 0.2, 0.42}) {
-    const auto pw = make_piecewise_drucker_prager(concrete({{0.42, 8e6}}, dil), concrete({{0.42, 8e6}}, dil));
+    const auto pw =
+        make_piecewise_drucker_prager(concrete({{0.42, 8e6}}, dil), concrete({{0.42, 8e6}}, dil));
     DruckerPrager dp;
     dp.K = pw.K;
     dp.G = pw.G;
@@ -161,7 +163,8 @@ TEST(PiecewiseDruckerPrager, OnePieceEqualsDruckerPrager) {
 
 // One piece with A = 0 is von Mises with sigma_y = sqrt3 B.
 TEST(PiecewiseDruckerPrager, ZeroSlopeIsVonMises) {
-  const auto pw = make_piecewise_drucker_prager(concrete({{0.0, 20e6}}, 0.0), concrete({{0.0, 20e6}}, 0.0));
+  const auto pw =
+      make_piecewise_drucker_prager(concrete({{0.0, 20e6}}, 0.0), concrete({{0.0, 20e6}}, 0.0));
   const PwMaterial base = concrete({}, 0.0);
   VonMisesParams vmp;
   vmp.yield_stress = std::sqrt(3.0) * 20e6;

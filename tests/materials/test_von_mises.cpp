@@ -436,7 +436,8 @@ TEST(VonMisesHardening, JohnsonCookRateFactor) {
   const double e_trial[3] = {-2e-3, 1e-3, 0.5e-3};
   for (double dt : {1e-6, 1e-3, 1.0, 0.0}) {
     const PrincipalReturn r = vm.return_map(e_trial, 0.0, dt);
-    const PrincipalReturn r0 = make_von_mises(slow_params, slow_params).return_map(e_trial, 0.0, dt);
+    const PrincipalReturn r0 =
+        make_von_mises(slow_params, slow_params).return_map(e_trial, 0.0, dt);
     ASSERT_TRUE(r.yielded);
     const double dg = r.kappa;
     const double rate = (dt > 0.0) ? dg / dt : 0.0;

@@ -110,8 +110,9 @@ TEST(OutputTables, DocsShowTheTable) {
   std::stringstream buf;
   buf << in.rdbuf();
   std::string doc = buf.str();
-  const std::string begin = "<!-- output-tables:begin (generated from "
-                            "tools/femdem/run/output_tables.cpp) -->\n",
+  const std::string begin =
+                        "<!-- output-tables:begin (generated from "
+                        "tools/femdem/run/output_tables.cpp) -->\n",
                     end = "<!-- output-tables:end -->";
   const auto b = doc.find(begin), e = doc.find(end);
   ASSERT_NE(b, std::string::npos) << "marker missing in " << path << ": " << begin;

@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "engine/errors.hpp"
-#include "tools/femdem/sweep/sweep.hpp"
 #include "support/run_command.hpp"
+#include "tools/femdem/sweep/sweep.hpp"
 
 namespace {
 

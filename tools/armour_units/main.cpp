@@ -41,7 +41,6 @@
 //
 // Exit codes: 0 written, 2 bad option, 1 geometry check or write failed.
 
-
 #include <CLI/CLI.hpp>
 
 #include "tools/armour_units/unit_shapes.hpp"
@@ -66,7 +65,6 @@ const std::map<std::string, Defaults> kShapes{
     {"cube", {1.4, "edge length"}},
     {"vcross", {4.67, "span S of each bar"}},
 };
-
 
 }  // namespace
 
@@ -239,4 +237,3 @@ int main(int argc, char** argv) {
     return kExitFailure;
   }
 }
-

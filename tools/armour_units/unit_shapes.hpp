@@ -95,7 +95,8 @@ inline ExactMesh unite(std::vector<ExactMesh> pieces) {
 
 // Regular polygon of n corners, circumradius rc, centred at c in the plane spanned by the unit
 // vectors e1, e2; the first corner lies at angle phase from e1.
-inline void add_polygon(std::vector<Vec>& pts, Vec c, Vec e1, Vec e2, double rc, int n, double phase) {
+inline void add_polygon(std::vector<Vec>& pts, Vec c, Vec e1, Vec e2, double rc, int n,
+                        double phase) {
   for (int k = 0; k < n; ++k) {
     const double a = phase + 2.0 * std::numbers::pi * k / n;
     pts.push_back(c + rc * std::cos(a) * e1 + rc * std::sin(a) * e2);
@@ -235,6 +236,5 @@ ExactMesh vcross(double arm) {  // arm = a / S
   PMP::polygon_soup_to_polygon_mesh(pts, tris, mesh);
   return mesh;
 }
-
 
 }  // namespace armour_units

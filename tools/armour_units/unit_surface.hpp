@@ -178,7 +178,7 @@ inline void write_stl(const Surface& s, const std::string& path, const std::stri
 }
 
 inline void write_obj_or_off(const Surface& s, const std::string& path, bool off,
-                      const std::string& title) {
+                             const std::string& title) {
   std::ofstream out(path);
   if (!out) throw std::runtime_error("cannot open " + path + " for writing");
   char buf[128];

@@ -165,8 +165,8 @@ void print_scene_summary(const SceneFile& scene) {
 
 // `femdem check SCENE --material NAME --strain-path FILE`: the stress path of one material point
 // under a prescribed deformation history, as CSV on standard output.
-int material_point(const SceneFile& scene, const std::string& name,
-                   const std::string& path_file, int substeps) {
+int material_point(const SceneFile& scene, const std::string& name, const std::string& path_file,
+                   int substeps) {
   const MaterialParams* mat = nullptr;
   std::vector<std::string> names;
   for (const auto& m : scene.model.materials) {
@@ -176,8 +176,8 @@ int material_point(const SceneFile& scene, const std::string& name,
   if (!mat) {
     std::string all;
     for (const auto& n : names) all += (all.empty() ? "" : ", ") + n;
-    throw InputError("no material '" + name + "' in the scene (materials: " + all + ")",
-                             scene.path, 0, 0, "--material");
+    throw InputError("no material '" + name + "' in the scene (materials: " + all + ")", scene.path,
+                     0, 0, "--material");
   }
   const std::vector<F3> targets = read_strain_path(path_file);
   const auto steps = drive_deformation(*mat, targets, substeps);

@@ -221,7 +221,8 @@ int main(int argc, char** argv) {
     if (sweep->parsed()) {
       sweep_options.plot = !no_plot;
       sweep_options.femdem_exe = self_exe(argv[0]);
-      sweep_options.plot_script = femdem::find_plot_script(sweep_options.femdem_exe, "plot_sweep.py");
+      sweep_options.plot_script =
+          femdem::find_plot_script(sweep_options.femdem_exe, "plot_sweep.py");
       return femdem::run_sweep(sweep_options);
     }
     if (run->parsed()) {

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// CAD surfaces -> TET10 meshes (io/mesh/cad_mesh.hpp), the mesh cache (io/mesh/mesh_cache.hpp), the scene
-// path and `femdem mesh`: volumes of meshed cubes and spheres against the exact values, every
+// CAD surfaces -> TET10 meshes (io/mesh/cad_mesh.hpp), the mesh cache (io/mesh/mesh_cache.hpp), the
+// scene path and `femdem mesh`: volumes of meshed cubes and spheres against the exact values, every
 // kind of broken surface giving exit code 2 with a message that says what and where,
 // determinism, the .msh round trip and the cache.
 #include <gtest/gtest.h>

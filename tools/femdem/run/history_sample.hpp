@@ -26,8 +26,8 @@ struct HistorySample {
   double balance_error = 0.0;
   std::vector<BodySample> bodies;
   std::vector<WallSample> walls;
-  std::optional<double> max_penetration;        // when bodies can touch each other
-  std::optional<CompactionSample> compaction;   // when the scene has [compaction]
+  std::optional<double> max_penetration;       // when bodies can touch each other
+  std::optional<CompactionSample> compaction;  // when the scene has [compaction]
 };
 
 // Fills `s` from the simulation now (reusing its vectors), all but the compaction columns,

@@ -95,14 +95,14 @@ constexpr OutputEntry<Compaction> kCompactionColumns[] = {
     {"compaction.punch_displacement", "m",
      "travel of the punch towards the bottom since t = 0: (x_punch(0) − x_punch) · n",
      [](const Compaction& c) { return c.punch_displacement; }},
-    {"compaction.punch_force", "N", "force on the punch along n: f_punch · n (positive when pressed)",
+    {"compaction.punch_force", "N",
+     "force on the punch along n: f_punch · n (positive when pressed)",
      [](const Compaction& c) { return c.punch_force; }},
     {"compaction.punch_pressure", "Pa", "mean punch pressure P = punch_force / A",
      [](const Compaction& c) { return c.punch_pressure; }},
     {"compaction.bottom_force", "N", "force on the bottom against n: −f_bottom · n",
      [](const Compaction& c) { return c.bottom_force; }},
-    {"compaction.die_normal_force", "N",
-     "Σ over die walls of the outward normal force −f_w · n_w",
+    {"compaction.die_normal_force", "N", "Σ over die walls of the outward normal force −f_w · n_w",
      [](const Compaction& c) { return c.die_normal_force; }},
     {"compaction.die_axial_force", "N",
      "Σ over die walls of −f_w · n: the die-wall friction, towards the bottom while the punch "
@@ -138,9 +138,15 @@ struct SummaryKey {
   double (*value)(const RunRecord&);
 };
 
-bool always(const RunRecord&) { return true; }
-bool resting(const RunRecord& r) { return r.rest.enabled(); }
-bool body_contact(const RunRecord& r) { return r.sim.body_contact().active(); }
+bool always(const RunRecord&) {
+  return true;
+}
+bool resting(const RunRecord& r) {
+  return r.rest.enabled();
+}
+bool body_contact(const RunRecord& r) {
+  return r.sim.body_contact().active();
+}
 
 constexpr SummaryKey kSummaryKeys[] = {
     {"setup_time_s", "s", "wall time to read the scene and build the model", "always", always,
@@ -169,7 +175,9 @@ constexpr SummaryKey kSummaryKeys[] = {
      [](const RunRecord& r) { return r.rest.rest_time(); }},
     {"broadphase_runs", "-", "how often the broadphase (NBS) ran", "bodies can touch each other",
      body_contact,
-     [](const RunRecord& r) { return static_cast<double>(r.sim.body_contact().broadphase_runs()); }},
+     [](const RunRecord& r) {
+       return static_cast<double>(r.sim.body_contact().broadphase_runs());
+     }},
     {"contact_pair_evaluations", "-", "candidate sub-tet pairs evaluated, summed over the steps",
      "bodies can touch each other", body_contact,
      [](const RunRecord& r) {
@@ -206,7 +214,8 @@ void append_values(std::span<const OutputEntry<S>> table, const S& s, std::vecto
 template <class S>
 void append_table(std::string& md, const char* title, std::span<const OutputEntry<S>> table,
                   const char* prefix) {
-  md += std::string(md.empty() ? "" : "\n") + title + "\n\n| column | unit | meaning |\n|---|---|---|\n";
+  md += std::string(md.empty() ? "" : "\n") + title +
+        "\n\n| column | unit | meaning |\n|---|---|---|\n";
   for (const OutputEntry<S>& c : table)
     md += std::string("| `") + prefix + c.name + "` | " + c.unit + " | " + c.meaning + " |\n";
 }
@@ -254,8 +263,8 @@ std::string output_tables_markdown() {
   append_table<Compaction>(md, "Then, for scenes with `[compaction]`:", kCompactionColumns, "");
   md += "\nsummary.json `extra`:\n\n| key | unit | meaning | written when |\n|---|---|---|---|\n";
   for (const SummaryKey& k : kSummaryKeys)
-    md += std::string("| `") + k.name + "` | " + k.unit + " | " + k.meaning + " | " + k.when +
-          " |\n";
+    md +=
+        std::string("| `") + k.name + "` | " + k.unit + " | " + k.meaning + " | " + k.when + " |\n";
   return md;
 }
 

@@ -15,8 +15,8 @@ class ProgressLine {
   void restart_clock();  // the loop starts now
   // Cheap to call every step: looks at the clock every 16 steps.
   void update(const Simulation& sim);
-  void clear();          // the end of a run: wipe the line on a terminal
-  void break_line();     // before an error message: end the line on a terminal
+  void clear();       // the end of a run: wipe the line on a terminal
+  void break_line();  // before an error message: end the line on a terminal
 
  private:
   bool quiet_, tty_;

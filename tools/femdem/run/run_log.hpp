@@ -13,9 +13,9 @@ class RunLog {
  public:
   // Creates (truncates) `path`. Throws std::runtime_error if it cannot.
   RunLog(const std::filesystem::path& path, bool quiet);
-  void say(const std::string& line);         // standard output (unless quiet) and the log
-  void file_only(const std::string& text);   // the log only, as is
-  void error(const std::string& line);       // the log only: the caller prints errors itself
+  void say(const std::string& line);        // standard output (unless quiet) and the log
+  void file_only(const std::string& text);  // the log only, as is
+  void error(const std::string& line);      // the log only: the caller prints errors itself
 
  private:
   std::ofstream file_;

@@ -111,8 +111,8 @@ void say_model(RunLog& log, const SceneFile& scene, const Simulation& sim, int t
 }
 
 // The closing lines of a completed run: rest, rate and balance, mass scaling, where to look.
-void say_outcome(RunLog& log, const Simulation& sim, const RestMonitor& rest,
-                 double wall_time_s, const std::filesystem::path& out) {
+void say_outcome(RunLog& log, const Simulation& sim, const RestMonitor& rest, double wall_time_s,
+                 const std::filesystem::path& out) {
   const Model& m = sim.model();
   char buf[300];
   if (rest.enabled()) {

@@ -41,8 +41,7 @@ RunSummary make_run_summary(const RunRecord& run, const RunIdentity& id,
     bs.volume = s.volume;
     bs.com = {s.com.x(), s.com.y(), s.com.z()};
     bs.vcom = {s.vcom.x(), s.vcom.y(), s.vcom.z()};
-    bs.angular_velocity = {s.angular_velocity.x(), s.angular_velocity.y(),
-                           s.angular_velocity.z()};
+    bs.angular_velocity = {s.angular_velocity.x(), s.angular_velocity.y(), s.angular_velocity.z()};
     bs.kinetic_energy = s.kinetic_energy;
     bs.bbox_min = {s.bbox_min.x(), s.bbox_min.y(), s.bbox_min.z()};
     bs.bbox_max = {s.bbox_max.x(), s.bbox_max.y(), s.bbox_max.z()};

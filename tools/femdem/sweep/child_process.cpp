@@ -60,5 +60,4 @@ int exit_code_of(int status) {
   return 1;
 }
 
-
 }  // namespace femdem::sweep

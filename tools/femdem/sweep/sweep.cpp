@@ -5,10 +5,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <atomic>
-#include <chrono>
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -42,7 +42,6 @@ extern "C" void on_sweep_signal(int sig) {
   g_sweep_signal = sig;
 }
 
-
 // A value of a --vary key that the scene reader rejected: the reader's message, naming the
 // --vary rather than the --set it was given as.
 [[noreturn]] void bad_vary_value(const std::string& key, const std::string& value,
@@ -52,7 +51,6 @@ extern "C" void on_sweep_signal(int sig) {
   for (std::size_t p; (p = msg.find(as_set)) != std::string::npos;) msg.replace(p, 5, "--vary");
   throw InputError("value '" + value + "': " + msg, {}, 0, 0, "--vary " + key);
 }
-
 
 }  // namespace
 

@@ -23,7 +23,6 @@ namespace fs = std::filesystem;
 // ---------------------------------------------------------------------------------------------
 // Run folders
 
-
 static std::vector<std::string> key_parts(const std::string& key) {
   std::vector<std::string> parts;
   std::size_t start = 0;
@@ -117,7 +116,6 @@ static std::string number_text(const Json& v) {
   return buf;
 }
 
-
 // summary.json flattened to dotted columns: vectors of three as .x/.y/.z, a null restitution as
 // two empty columns (so the columns do not depend on whether a body bounced).
 void flatten(const Json& j, const std::string& prefix, Fields& out) {
@@ -158,8 +156,6 @@ static std::string csv_field(const std::string& s) {
   }
   return q + "\"";
 }
-
-
 
 // sweep.csv: the finished runs in sweep order; the columns are the union over them.
 std::string csv_text(const std::vector<Axis>& axes, const std::vector<Run>& runs) {
