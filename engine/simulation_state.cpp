@@ -1,0 +1,185 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Simulation's read-only views of the current state, for outputs and monitors: energies and
+// balance, body motions and states, principal stresses, element stresses, bodies' volumes.
+// Per-element work may run in parallel; every sum is serial in index order, so the results
+// are the same bits for any thread count.
+#include "engine/simulation.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+#include "engine/element_kernel.hpp"
+#include "engine/parallel_threshold.hpp"
+#include "materials/symmetric_eigen3.hpp"
+
+namespace femdem {
+
+double Simulation::bodies_volume(std::span<const std::uint8_t> body_mask) const {
+  const Model& m = model_;
+  const std::int32_t ne = m.element_count;
+  double* ve = elem_scratch_.data();
+  // One parallel pass over all elements (a powder of many small bodies parallelises as well as
+  // one big body), each into its own slot, then one serial sum in element order: the same bits
+  // for any thread count.
+#pragma omp parallel for schedule(static) if (ne > kParallelMinElements)
+  for (std::int32_t e = 0; e < ne; ++e) {
+    if (!body_mask[m.element_body[e]]) continue;
+    double xe[30];
+    for (int a = 0; a < 10; ++a)
+      for (int k = 0; k < 3; ++k) xe[3 * a + k] = m.x[3 * m.conn[e][a] + k];
+    const std::size_t es = static_cast<std::size_t>(e);
+    ve[e] = tet10_current_volume(xe, m.dNdX.data() + 120 * es, m.gauss_weight.data() + 4 * es);
+  }
+  double v = 0.0;
+  for (std::int32_t e = 0; e < ne; ++e)
+    if (body_mask[m.element_body[e]]) v += ve[e];
+  return v;
+}
+
+Energies Simulation::energies() const {
+  Energies e;
+  double ke = 0.0;
+  for (std::int32_t n = 0; n < model_.node_count; ++n) {
+    const double* v = model_.v.data() + 3 * static_cast<std::size_t>(n);
+    ke += 0.5 * model_.mass[n] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  }
+  e.kinetic = ke;
+  e.internal = internal_energy_;
+  e.plastic_dissipation = plastic_dissipation_;
+  e.contact_dissipation = contact_dissipation_;
+  e.viscous_dissipation = viscous_dissipation_;
+  e.mass_scaling_dissipation = mass_scaling_dissipation_;
+  e.contact = contact_energy_;
+  e.external_work = external_work_;
+  return e;
+}
+
+double Simulation::balance_error() const {
+  const double scale = std::max(max_energy_, 1e-300);
+  return (energies().balance() - initial_balance_) / scale;
+}
+
+BodyState Simulation::body_motion(int bi) const {
+  const Model& m = model_;
+  const Body& b = m.bodies[bi];
+  BodyState s;
+  s.mass = b.mass;
+  s.added_mass = body_added_mass_[bi];
+  double msum = 0.0;
+  for (std::int32_t n = b.first_node; n < b.first_node + b.node_count; ++n) {
+    const double mn = m.mass[n];
+    const double* x = m.x.data() + 3 * static_cast<std::size_t>(n);
+    const double* v = m.v.data() + 3 * static_cast<std::size_t>(n);
+    msum += mn;
+    for (int k = 0; k < 3; ++k) {
+      s.com[k] += mn * x[k];
+      s.vcom[k] += mn * v[k];
+    }
+    s.kinetic_energy += 0.5 * mn * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  }
+  // contact acts on boundary nodes and, through the contact sub-tets, on nodes just inside
+  for (std::int32_t n = b.first_node; n < b.first_node + b.node_count; ++n)
+    s.contact_force += Vec3(m.f_contact[3 * n], m.f_contact[3 * n + 1], m.f_contact[3 * n + 2]);
+  s.com /= msum;
+  s.vcom /= msum;
+  return s;
+}
+
+BodyState Simulation::body_state(int bi) const {
+  const Model& m = model_;
+  const Body& b = m.bodies[bi];
+  BodyState s;
+  s.mass = b.mass;
+  s.added_mass = body_added_mass_[bi];
+  s.bbox_min = Vec3::Constant(HUGE_VAL);
+  s.bbox_max = Vec3::Constant(-HUGE_VAL);
+  double msum = 0.0;
+  for (std::int32_t n = b.first_node; n < b.first_node + b.node_count; ++n) {
+    const Vec3 p(m.x[3 * n], m.x[3 * n + 1], m.x[3 * n + 2]);
+    const Vec3 v(m.v[3 * n], m.v[3 * n + 1], m.v[3 * n + 2]);
+    const double mn = m.mass[n];
+    msum += mn;
+    s.com += mn * p;
+    s.vcom += mn * v;
+    s.kinetic_energy += 0.5 * mn * v.squaredNorm();
+    s.contact_force += Vec3(m.f_contact[3 * n], m.f_contact[3 * n + 1], m.f_contact[3 * n + 2]);
+    s.bbox_min = s.bbox_min.cwiseMin(p);
+    s.bbox_max = s.bbox_max.cwiseMax(p);
+  }
+  s.com /= msum;
+  s.vcom /= msum;
+  // current volume: integral of det F over the reference element
+  double vol = 0.0;
+  for (std::int32_t e = b.first_element; e < b.first_element + b.element_count; ++e) {
+    const double* dN = m.dNdX.data() + 120 * static_cast<std::size_t>(e);
+    const double* w = m.gauss_weight.data() + 4 * static_cast<std::size_t>(e);
+    for (int gp = 0; gp < 4; ++gp) {
+      Eigen::Matrix3d F = Eigen::Matrix3d::Zero();
+      for (int a = 0; a < 10; ++a)
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j)
+            F(i, j) += m.x[3 * m.conn[e][a] + i] * dN[gp * 30 + 3 * a + j];
+      vol += w[gp] * F.determinant();
+    }
+  }
+  s.volume = vol;
+  // angular velocity: the lumped inertia tensor about the centre of mass inverted on the
+  // angular momentum (a deforming body's mean spin)
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+  Vec3 spin_momentum = Vec3::Zero();
+  for (std::int32_t n = b.first_node; n < b.first_node + b.node_count; ++n) {
+    const Vec3 r = Vec3(m.x[3 * n], m.x[3 * n + 1], m.x[3 * n + 2]) - s.com;
+    const Vec3 u = Vec3(m.v[3 * n], m.v[3 * n + 1], m.v[3 * n + 2]) - s.vcom;
+    inertia += m.mass[n] * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
+    spin_momentum += m.mass[n] * r.cross(u);
+  }
+  if (inertia.determinant() > 0.0) s.angular_velocity = inertia.ldlt().solve(spin_momentum);
+  for (std::size_t g = 4 * static_cast<std::size_t>(b.first_element);
+       g < 4 * static_cast<std::size_t>(b.first_element + b.element_count); ++g)
+    s.max_equivalent_plastic_strain =
+        std::max(s.max_equivalent_plastic_strain, m.gp_state[g].eps_p);
+  return s;
+}
+
+double Simulation::max_principal_stress(int bi) const {
+  const Body& b = model_.bodies[bi];
+  const std::int64_t g0 = 4 * static_cast<std::int64_t>(b.first_element);
+  const std::int64_t g1 = g0 + 4 * static_cast<std::int64_t>(b.element_count);
+  double largest = -HUGE_VAL;
+  // max is exact in any order, so the reduction gives the same bits with any thread count
+#pragma omp parallel for schedule(static) \
+    reduction(max                         \
+              : largest) if (g1 - g0 > 4 * kParallelMinElements)
+  for (std::int64_t g = g0; g < g1; ++g)
+    largest = std::max(largest, largest_eigenvalue3(model_.stress.data() + 6 * g));
+  return largest;
+}
+
+void Simulation::element_stress(std::vector<double>& stress6, std::vector<double>& von_mises,
+                                std::vector<double>& pressure,
+                                std::vector<double>& eq_plastic) const {
+  const std::int32_t ne = model_.element_count;
+  stress6.assign(6 * static_cast<std::size_t>(ne), 0.0);
+  von_mises.assign(ne, 0.0);
+  pressure.assign(ne, 0.0);
+  eq_plastic.assign(ne, 0.0);
+  for (std::int32_t e = 0; e < ne; ++e) {
+    double s[6] = {};
+    for (int g = 0; g < 4; ++g)
+      for (int k = 0; k < 6; ++k)
+        s[k] += 0.25 * model_.stress[24 * static_cast<std::size_t>(e) + 6 * g + k];
+    for (int k = 0; k < 6; ++k) stress6[6 * e + k] = s[k];
+    double ep = 0.0;
+    for (int g = 0; g < 4; ++g)
+      ep += 0.25 * model_.gp_state[4 * static_cast<std::size_t>(e) + g].eps_p;
+    eq_plastic[e] = ep;
+    const double p = -(s[0] + s[1] + s[2]) / 3.0;
+    pressure[e] = p;
+    const double d0 = s[0] + p, d1 = s[1] + p, d2 = s[2] + p;
+    von_mises[e] = std::sqrt(
+        1.5 * (d0 * d0 + d1 * d1 + d2 * d2 + 2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5])));
+  }
+}
+
+}  // namespace femdem
