@@ -12,106 +12,15 @@
 #include "elements/tet_geometry.hpp"
 #include "engine/errors.hpp"
 #include "io/mesh/mesh_generators.hpp"
+#include "support/mesh_checks.hpp"
 
 using namespace femdem;
 
 namespace {
 
+using test::check_conforming;
+
 constexpr double kPi = 3.14159265358979323846;
-
-struct Topology {
-  std::vector<std::array<int, 6>> boundary_faces;  // 6-node faces with outward orientation
-  std::size_t interior_faces = 0;
-};
-
-// Checks conformity and returns the boundary: every element positive; no node unused or
-// duplicated; every edge has one mid-edge node, shared by all elements around it; every face
-// shared by at most two elements, with opposite orientations; the boundary is a closed
-// 2-manifold surface of genus 0 (V - E + F = 2, each boundary edge in exactly two faces).
-Topology check_conforming(const Tet10Mesh& m) {
-  Topology topo;
-  // Positive orientation, valid quadratic map.
-  for (std::size_t e = 0; e < m.elements.size(); ++e) {
-    const Tet10& t = m.elements[e];
-    EXPECT_GT(tet_signed_volume(m.nodes[t[0]], m.nodes[t[1]], m.nodes[t[2]], m.nodes[t[3]]), 0.0)
-        << "element " << e;
-    EXPECT_GT(tet10_min_scaled_jacobian(m, e), 0.0) << "element " << e;
-  }
-  // Every node used; no duplicate positions.
-  std::vector<char> used(m.nodes.size(), 0);
-  for (const Tet10& t : m.elements)
-    for (int n : t) {
-      EXPECT_GE(n, 0);
-      EXPECT_LT(n, static_cast<int>(m.nodes.size()));
-      used[n] = 1;
-    }
-  EXPECT_EQ(std::count(used.begin(), used.end(), 1), static_cast<long>(m.nodes.size()));
-  std::vector<std::array<double, 3>> pos;
-  for (const Vec3& x : m.nodes) pos.push_back({x[0], x[1], x[2]});
-  std::sort(pos.begin(), pos.end());
-  EXPECT_EQ(std::adjacent_find(pos.begin(), pos.end()), pos.end()) << "duplicate node";
-  // Unique mid-edge node per edge.
-  std::map<std::pair<int, int>, int> mid;
-  std::set<int> corners, mids;
-  for (const Tet10& t : m.elements)
-    for (int k = 0; k < 6; ++k) {
-      int a = t[kTet10Edges[k][0]], b = t[kTet10Edges[k][1]];
-      if (a > b) std::swap(a, b);
-      const auto [it, added] = mid.emplace(std::make_pair(a, b), t[4 + k]);
-      if (!added) {
-        EXPECT_EQ(it->second, t[4 + k]) << "edge " << a << "-" << b;
-      }
-      corners.insert(a);
-      corners.insert(b);
-      mids.insert(t[4 + k]);
-    }
-  EXPECT_EQ(mids.size(), mid.size()) << "a mid-edge node serves two edges";
-  for (int c : corners) EXPECT_EQ(mids.count(c), 0u) << "node is both corner and mid-edge";
-  // Faces.
-  std::map<std::array<int, 3>, std::vector<std::array<int, 6>>> faces;
-  for (const Tet10& t : m.elements)
-    for (const auto& f : kTet10Faces) {
-      std::array<int, 6> g;
-      for (int i = 0; i < 6; ++i) g[i] = t[f[i]];
-      std::array<int, 3> key{g[0], g[1], g[2]};
-      std::sort(key.begin(), key.end());
-      faces[key].push_back(g);
-    }
-  for (const auto& [key, list] : faces) {
-    EXPECT_LE(list.size(), 2u);
-    if (list.size() == 1) topo.boundary_faces.push_back(list[0]);
-    if (list.size() == 2) {
-      ++topo.interior_faces;
-      // Opposite orientation: the cyclic corner order of one is reversed in the other.
-      const auto& p = list[0];
-      const auto& q = list[1];
-      int i = 0;
-      while (i < 3 && q[i] != p[0]) ++i;
-      EXPECT_EQ(q[(i + 2) % 3], p[1]) << "faces not oppositely oriented";
-    }
-  }
-  // Closed genus-0 boundary surface.
-  std::map<std::pair<int, int>, int> bedges;
-  std::set<int> bverts;
-  for (const auto& f : topo.boundary_faces)
-    for (int i = 0; i < 3; ++i) {
-      int a = f[i], b = f[(i + 1) % 3];
-      bverts.insert(a);
-      if (a > b) std::swap(a, b);
-      ++bedges[{a, b}];
-    }
-  for (const auto& [e, n] : bedges) EXPECT_EQ(n, 2) << "boundary edge in " << n << " faces";
-  const long euler = static_cast<long>(bverts.size()) - static_cast<long>(bedges.size()) +
-                     static_cast<long>(topo.boundary_faces.size());
-  EXPECT_EQ(euler, 2);
-  return topo;
-}
-
-double volume(const Tet10Mesh& m) {
-  double v = 0.0;
-  for (std::size_t e = 0; e < m.elements.size(); ++e) v += tet10_volume(m, e);
-  return v;
-}
 
 void expect_same(const Tet10Mesh& a, const Tet10Mesh& b) {
   ASSERT_EQ(a.nodes.size(), b.nodes.size());
@@ -139,15 +48,15 @@ TEST(MeshGenerators, BoxIsExactConformingAndGood) {
   EXPECT_EQ(m.elements.size(), 6u * 10 * 6 * 4);
   EXPECT_EQ(m.nodes.size(), 21u * 13 * 9);
   EXPECT_EQ(box_element_count(size, 0.1), static_cast<std::int64_t>(m.elements.size()));
-  const Topology topo = check_conforming(m);
-  EXPECT_EQ(topo.boundary_faces.size(), 2u * 2 * (10 * 6 + 10 * 4 + 6 * 4));
-  EXPECT_NEAR(volume(m), size.prod(), 1e-14);
+  const test::Faces topo = check_conforming(m);
+  EXPECT_EQ(topo.boundary.size(), 2u * 2 * (10 * 6 + 10 * 4 + 6 * 4));
+  EXPECT_NEAR(test::mesh_volume(m), size.prod(), 1e-14);
   Vec3 lo = m.nodes[0], hi = m.nodes[0];
   for (const Vec3& x : m.nodes) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
   EXPECT_EQ(lo, Vec3::Zero());
   EXPECT_EQ(hi, size);
   // Boundary faces lie in the six planes.
-  for (const auto& f : topo.boundary_faces) {
+  for (const auto& f : topo.boundary) {
     bool on_plane = false;
     for (int a = 0; a < 3; ++a)
       for (double v : {0.0, size[a]}) {
@@ -175,14 +84,14 @@ TEST(MeshGenerators, CoarsestMeshes) {
   const Tet10Mesh b = generate_box(Vec3(1, 2, 3), 10.0);
   EXPECT_EQ(b.elements.size(), 6u);
   check_conforming(b);
-  EXPECT_NEAR(volume(b), 6.0, 1e-14);
+  EXPECT_NEAR(test::mesh_volume(b), 6.0, 1e-14);
   const Tet10Mesh c = generate_cylinder(1.0, 0.1, 5.0);
   EXPECT_EQ(c.elements.size(), 6u * 4);
   check_conforming(c);
   const Tet10Mesh s = generate_sphere(1.0, 5.0);
   EXPECT_EQ(s.elements.size(), 6u * 8);
   check_conforming(s);
-  EXPECT_NEAR(volume(s), 4.0 / 3.0 * kPi, 0.1);
+  EXPECT_NEAR(test::mesh_volume(s), 4.0 / 3.0 * kPi, 0.1);
 }
 
 TEST(MeshGenerators, CylinderBoundaryOnSurfaceAndConforming) {
@@ -190,9 +99,9 @@ TEST(MeshGenerators, CylinderBoundaryOnSurfaceAndConforming) {
   const Tet10Mesh m = generate_cylinder(R, L, h);
   EXPECT_EQ(m.elements.size(), 6u * 8 * 8 * 13);
   EXPECT_EQ(cylinder_element_count(R, L, h), static_cast<std::int64_t>(m.elements.size()));
-  const Topology topo = check_conforming(m);
+  const test::Faces topo = check_conforming(m);
   std::size_t side = 0;
-  for (const auto& f : topo.boundary_faces) {
+  for (const auto& f : topo.boundary) {
     bool bottom = true, top = true, mantle = true;
     for (int n : f) {
       const Vec3& x = m.nodes[n];
@@ -223,9 +132,9 @@ TEST(MeshGenerators, SphereBoundaryOnSurfaceAndConforming) {
   const Tet10Mesh m = generate_sphere(R, h);
   EXPECT_EQ(m.elements.size(), 6u * 10 * 10 * 10);
   EXPECT_EQ(sphere_element_count(R, h), static_cast<std::int64_t>(m.elements.size()));
-  const Topology topo = check_conforming(m);
-  EXPECT_EQ(topo.boundary_faces.size(), 6u * 10 * 10 * 2);
-  for (const auto& f : topo.boundary_faces)
+  const test::Faces topo = check_conforming(m);
+  EXPECT_EQ(topo.boundary.size(), 6u * 10 * 10 * 2);
+  for (const auto& f : topo.boundary)
     for (int n : f) EXPECT_NEAR(m.nodes[n].norm(), R, 1e-12 * R) << "node " << n;
   for (const Vec3& x : m.nodes) EXPECT_LE(x.norm(), R * (1 + 1e-14));
   // Symmetric about the centre.
@@ -245,14 +154,14 @@ TEST(MeshGenerators, SphereBoundaryOnSurfaceAndConforming) {
 // 1.9e-7 -- rate 4. Straight (chordal) boundary edges would give rate 2 and errors ~1e-2.
 TEST(MeshGenerators, VolumeConvergesAtQuadraticGeometryRate) {
   const double vs = 4.0 / 3.0 * kPi;
-  const double es1 = std::abs(volume(generate_sphere(1.0, 0.25)) / vs - 1.0);
-  const double es2 = std::abs(volume(generate_sphere(1.0, 0.125)) / vs - 1.0);
+  const double es1 = std::abs(test::mesh_volume(generate_sphere(1.0, 0.25)) / vs - 1.0);
+  const double es2 = std::abs(test::mesh_volume(generate_sphere(1.0, 0.125)) / vs - 1.0);
   EXPECT_LT(es1, 5e-5);
   EXPECT_LT(es2, 3e-6);
   EXPECT_GT(es1 / es2, 8.0) << "rate " << std::log2(es1 / es2);
   const double vc = kPi * 3.0;
-  const double ec1 = std::abs(volume(generate_cylinder(1.0, 3.0, 0.25)) / vc - 1.0);
-  const double ec2 = std::abs(volume(generate_cylinder(1.0, 3.0, 0.125)) / vc - 1.0);
+  const double ec1 = std::abs(test::mesh_volume(generate_cylinder(1.0, 3.0, 0.25)) / vc - 1.0);
+  const double ec2 = std::abs(test::mesh_volume(generate_cylinder(1.0, 3.0, 0.125)) / vc - 1.0);
   EXPECT_LT(ec1, 1e-5);
   EXPECT_LT(ec2, 5e-7);
   EXPECT_GT(ec1 / ec2, 8.0) << "rate " << std::log2(ec1 / ec2);
