@@ -52,18 +52,8 @@ extern "C" void on_sweep_signal(int sig) {
   throw InputError("value '" + value + "': " + msg, {}, 0, 0, "--vary " + key);
 }
 
-}  // namespace
-
-int run_sweep(const SweepOptions& opt) {
-  using Clock = std::chrono::steady_clock;
-  const auto t0 = Clock::now();
-  auto now = [&] { return std::chrono::duration<double>(Clock::now() - t0).count(); };
-  auto say = [&](const std::string& s) {
-    if (!opt.quiet) std::printf("sweep: %s\n", s.c_str());
-    std::fflush(stdout);
-  };
-
-  // --- the axes
+// The --vary axes: each KEY=V1,V2,... once, none also given to --set.
+std::vector<Axis> read_axes(const SweepOptions& opt) {
   if (opt.vary.empty())
     throw InputError("give at least one --vary KEY=V1,V2,...", {}, 0, 0, "--vary");
   std::vector<Axis> axes;
@@ -88,14 +78,12 @@ int run_sweep(const SweepOptions& opt) {
     axes.push_back(std::move(a));
   }
   assign_short_names(axes);
+  return axes;
+}
 
-  // --- validate: the scene with --set, every value of every axis, then every combination
-  const SceneFile base = load_scene(opt.scene_path, opt.overrides);
-  std::size_t total = 1;
-  for (const auto& a : axes) total *= a.values.size();
-  if (total > 100000) throw InputError("more than 100000 runs", {}, 0, 0, "--vary");
-  say("checking " + std::to_string(total) + " run" + (total == 1 ? "" : "s") + " of " +
-      opt.scene_path);
+// With several axes, every value on its own first, so that a bad value is named as such
+// rather than as a bad combination.
+void check_axis_values(const SweepOptions& opt, const std::vector<Axis>& axes) {
   if (axes.size() > 1) {
     for (const auto& a : axes)
       for (const auto& v : a.values) {
@@ -108,6 +96,12 @@ int run_sweep(const SweepOptions& opt) {
         }
       }
   }
+}
+
+// The runs in sweep order (the last axis varies fastest), each with its folder name and its
+// resolved scene; a combination the scene reader rejects is an InputError.
+std::vector<Run> plan_runs(const SweepOptions& opt, const std::vector<Axis>& axes,
+                           std::size_t total) {
   std::vector<Run> runs(total);
   std::map<std::string, int> name_count;
   for (std::size_t i = 0; i < total; ++i) {
@@ -136,10 +130,12 @@ int run_sweep(const SweepOptions& opt) {
     }
   }
 
-  // --- the sweep folder; runs already completed with the same resolved scene are kept
-  const fs::path dir =
-      opt.out_dir.empty() ? fs::path("out") / (base.stem + "_sweep") : fs::path(opt.out_dir);
-  fs::create_directories(dir);
+  return runs;
+}
+
+// Marks the runs already completed in `dir` with the same resolved scene as skipped (their
+// summaries are kept); returns how many.
+std::size_t keep_completed(const fs::path& dir, std::vector<Run>& runs) {
   std::size_t skipped = 0;
   for (auto& r : runs) {
     const fs::path rd = dir / r.name;
@@ -151,6 +147,109 @@ int run_sweep(const SweepOptions& opt) {
     flatten(*summary, "", r.fields);
     ++skipped;
   }
+  return skipped;
+}
+
+// tools/plot_sweep.py DIR, with the system python first (tools/setup installs matplotlib there,
+// as the script's #! line expects), then whatever python3 is on the PATH.
+template <class Say>
+void plot_sweep(const SweepOptions& opt, const fs::path& dir, const Say& say) {
+  if (!opt.plot) {
+    // --no-plot
+  } else if (opt.plot_script.empty() || !fs::exists(opt.plot_script)) {
+    say("note: tools/plot_sweep.py not found; no plots");
+  } else {
+    // The system python first (tools/setup installs matplotlib there, as the script's #! line
+    // expects), then whatever python3 is on the PATH.
+    int code = 127;
+    for (const char* python : {"/usr/bin/python3", "python3"}) {
+      if (python[0] == '/' && !fs::exists(python)) continue;
+      std::vector<std::string> args = {python, opt.plot_script, dir.string()};
+      if (opt.quiet) args.push_back("--quiet");
+      const pid_t pid = spawn(args, opt.quiet ? "/dev/null" : "", true);
+      int status = 0;
+      if (pid > 0) {
+        while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+        }
+      }
+      const int c = pid > 0 ? exit_code_of(status) : 127;
+      if (c == 127 && code == 4) continue;  // keep "matplotlib missing" over "no python"
+      code = c;
+      if (code != 127 && code != 4) break;
+    }
+    if (code == 127)
+      say("note: python3 not found; no plots (run tools/setup, then tools/plot_sweep.py " +
+          dir.string() + ")");
+    else if (code == 4)
+      say("note: matplotlib missing; no plots (run tools/setup, then tools/plot_sweep.py " +
+          dir.string() + ")");
+    else if (code != 0)
+      say("note: the plot script failed (exit code " + std::to_string(code) + ")");
+  }
+}
+
+// A run's process ended with `exit_code`: its summary flattened and its outcome.
+void finish_run(Run& r, int exit_code, const fs::path& dir) {
+  r.exit_code = exit_code;
+  r.fields.clear();
+  const auto summary = read_summary(dir / r.name / "summary.json");
+  std::string st = "failed";
+  if (summary && summary->is_object()) {
+    flatten(*summary, "", r.fields);
+    st = summary->value("status", "failed");
+  } else {
+    r.fields = {{"status", "failed"}};
+  }
+  if (r.exit_code == 0 && st == "completed")
+    r.outcome = Outcome::completed;
+  else if (g_sweep_signal != 0 && st == "interrupted")
+    r.outcome = Outcome::interrupted;  // stopped by us: not counted as a failure
+  else if (st == "unstable" || (r.exit_code == 3 && !summary))
+    r.outcome = Outcome::diverged;
+  else
+    r.outcome = Outcome::failed;
+}
+
+// What the progress line says of a finished run.
+std::string outcome_text(const Run& r, double seconds, const fs::path& dir) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.1f s", seconds);
+  if (r.outcome == Outcome::completed) return std::string("completed in ") + buf;
+  if (r.outcome == Outcome::interrupted) return "interrupted";
+  if (r.outcome == Outcome::diverged)
+    return "DIVERGED (see " + (dir / r.name / "run.log").string() + ")";
+  return "FAILED with exit code " + std::to_string(r.exit_code) + " (see " +
+         (dir / r.name / "console.txt").string() + ")";
+}
+
+}  // namespace
+
+int run_sweep(const SweepOptions& opt) {
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  auto now = [&] { return std::chrono::duration<double>(Clock::now() - t0).count(); };
+  auto say = [&](const std::string& s) {
+    if (!opt.quiet) std::printf("sweep: %s\n", s.c_str());
+    std::fflush(stdout);
+  };
+
+  const std::vector<Axis> axes = read_axes(opt);
+
+  // --- validate: the scene with --set, every value of every axis, then every combination
+  const SceneFile base = load_scene(opt.scene_path, opt.overrides);
+  std::size_t total = 1;
+  for (const auto& a : axes) total *= a.values.size();
+  if (total > 100000) throw InputError("more than 100000 runs", {}, 0, 0, "--vary");
+  say("checking " + std::to_string(total) + " run" + (total == 1 ? "" : "s") + " of " +
+      opt.scene_path);
+  check_axis_values(opt, axes);
+  std::vector<Run> runs = plan_runs(opt, axes, total);
+
+  // --- the sweep folder; runs already completed with the same resolved scene are kept
+  const fs::path dir =
+      opt.out_dir.empty() ? fs::path("out") / (base.stem + "_sweep") : fs::path(opt.out_dir);
+  fs::create_directories(dir);
+  const std::size_t skipped = keep_completed(dir, runs);
   const fs::path csv = dir / "sweep.csv";
   auto write_csv = [&] { write_file_atomically(csv, csv_text(axes, runs), /*durable=*/false); };
   write_csv();
@@ -237,42 +336,13 @@ int run_sweep(const SweepOptions& opt) {
     if (it == running.end()) continue;
     Run& r = runs[it->second];
     running.erase(it);
-    r.exit_code = exit_code_of(status);
-    r.fields.clear();
-    const auto summary = read_summary(dir / r.name / "summary.json");
-    std::string st = "failed";
-    if (summary && summary->is_object()) {
-      flatten(*summary, "", r.fields);
-      st = summary->value("status", "failed");
-    } else {
-      r.fields = {{"status", "failed"}};
-    }
-    if (r.exit_code == 0 && st == "completed") {
-      r.outcome = Outcome::completed;
-    } else if (g_sweep_signal != 0 && st == "interrupted") {
-      r.outcome = Outcome::interrupted;  // stopped by us: not counted as a failure
-    } else if (st == "unstable" || (r.exit_code == 3 && !summary)) {
-      r.outcome = Outcome::diverged;
-      ++diverged;
-    } else {
-      r.outcome = Outcome::failed;
-      ++failed;
-    }
+    finish_run(r, exit_code_of(status), dir);
+    diverged += r.outcome == Outcome::diverged;
+    failed += r.outcome == Outcome::failed;
     ++done;
     write_csv();
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.1f s", now() - r.started);
-    std::string line =
-        "[" + std::to_string(done) + "/" + std::to_string(total) + "] " + run_label(axes, r) + ": ";
-    if (r.outcome == Outcome::completed)
-      line += std::string("completed in ") + buf;
-    else if (r.outcome == Outcome::interrupted)
-      line += "interrupted";
-    else if (r.outcome == Outcome::diverged)
-      line += "DIVERGED (see " + (dir / r.name / "run.log").string() + ")";
-    else
-      line += "FAILED with exit code " + std::to_string(r.exit_code) + " (see " +
-              (dir / r.name / "console.txt").string() + ")";
+    std::string line = "[" + std::to_string(done) + "/" + std::to_string(total) + "] " +
+                       run_label(axes, r) + ": " + outcome_text(r, now() - r.started, dir);
     if (failed || diverged)
       line += "; so far " + std::to_string(failed) + " failed, " + std::to_string(diverged) +
               " diverged";
@@ -296,39 +366,7 @@ int run_sweep(const SweepOptions& opt) {
       " completed, " + std::to_string(diverged) + " diverged, " + std::to_string(failed) +
       " failed)");
 
-  // --- plots
-  if (!opt.plot) {
-    // --no-plot
-  } else if (opt.plot_script.empty() || !fs::exists(opt.plot_script)) {
-    say("note: tools/plot_sweep.py not found; no plots");
-  } else {
-    // The system python first (tools/setup installs matplotlib there, as the script's #! line
-    // expects), then whatever python3 is on the PATH.
-    int code = 127;
-    for (const char* python : {"/usr/bin/python3", "python3"}) {
-      if (python[0] == '/' && !fs::exists(python)) continue;
-      std::vector<std::string> args = {python, opt.plot_script, dir.string()};
-      if (opt.quiet) args.push_back("--quiet");
-      const pid_t pid = spawn(args, opt.quiet ? "/dev/null" : "", true);
-      int status = 0;
-      if (pid > 0) {
-        while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-        }
-      }
-      const int c = pid > 0 ? exit_code_of(status) : 127;
-      if (c == 127 && code == 4) continue;  // keep "matplotlib missing" over "no python"
-      code = c;
-      if (code != 127 && code != 4) break;
-    }
-    if (code == 127)
-      say("note: python3 not found; no plots (run tools/setup, then tools/plot_sweep.py " +
-          dir.string() + ")");
-    else if (code == 4)
-      say("note: matplotlib missing; no plots (run tools/setup, then tools/plot_sweep.py " +
-          dir.string() + ")");
-    else if (code != 0)
-      say("note: the plot script failed (exit code " + std::to_string(code) + ")");
-  }
+  plot_sweep(opt, dir, say);
 
   if (failed) return 1;
   if (diverged) return 3;
