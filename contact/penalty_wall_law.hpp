@@ -4,8 +4,8 @@
 // spring k d along the wall normal, an optional dashpot on the normal speed (a fraction of
 // critical, never pulling), and Coulomb friction by a tangential spring as stiff as the normal
 // one that slides at mu times the normal force. Conservative but for the dashpot and sliding,
-// whose work it reports. A wall law is one such struct: engine/wall_contact.cpp applies it to
-// every (boundary node, wall) pair in contact.
+// whose work it reports. A wall law is one such struct, named in contact/contact_laws.hpp:
+// engine/wall_contact.cpp applies it to every (boundary node, wall) pair in contact.
 #include <algorithm>
 #include <cmath>
 
@@ -33,6 +33,7 @@ struct WallContactSums {
 };
 
 struct PenaltyWallLaw {
+  static constexpr const char* name = "penalty";  // the scene's [contact] wall_law
   // The force on the node; `slip` (3, or null without friction) is the friction spring's
   // stretch, updated.
   static Vec3 apply(const WallContactInput& in, double* slip, WallContactSums& sums) {

@@ -2,29 +2,21 @@
 #pragma once
 // Contact between bodies: the NBS broadphase over the contact sub-tetrahedra of all bodies
 // (Model::contact_tets), kept valid by a Verlet buffer so it runs only when something has moved
-// far enough; the exact penalty-potential force of every overlapping pair
-// (contact/tet_potential_contact.hpp); and Coulomb friction by a tangential spring per pair.
-//
-// Friction. The potential gives a pair its normal force N (the resultant on one side), energy
-// E and overlap centroid c. The friction spring of the pair stretches with the tangential
-// relative velocity at c, with stiffness k_t = N^2 / (2 E), the pair's secant normal stiffness
-// (exact for a flat overlap of depth d, where E = N d / 2), so a stuck contact yields by at most
-// mu d before it slides. Its force acts at c on both tetrahedra (spread by the barycentric
-// coordinates of c), so it is equal and opposite with no spurious moment. The spring slides at
-// mu N; the work of sliding is dissipated, the spring's energy is stored contact energy.
-//
-// Penetration. A pair's overlap depth is estimated as 2 E / N (exact for a flat overlap, see
-// above); the largest over the touching pairs is reported so that a user can see how far the
-// penalty lets the bodies sink into each other.
+// far enough; every candidate pair evaluated by the scene's contact law (`[contact] law`,
+// contact/contact_laws.hpp; by default contact/penalty_potential_law.hpp), which this class
+// gives each pair's friction spring and whose outcomes it sums.
 //
 // Every pair is evaluated independently (OpenMP) into its own slot and the forces are summed
-// over pairs in their sorted order, so results do not depend on the thread count.
+// over pairs in their sorted order, so results do not depend on the thread count. The largest
+// penetration over the touching pairs is reported so that a user can see how far the penalty
+// lets the bodies sink into each other.
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <vector>
 
+#include "contact/contact_laws.hpp"
 #include "contact/nbs_broadphase.hpp"
 #include "contact/verlet_buffer.hpp"
 #include "engine/contact_model.hpp"
@@ -81,25 +73,19 @@ class BodyContact final : public ContactModel {
 
  private:
   struct Pair {
-    std::uint32_t i = 0, j = 0;    // contact sub-tets, i < j
-    double penalty = 0.0;          // Pa
-    double friction = 0.0;         // Coulomb coefficient
-    double stick[3] = {0, 0, 0};   // friction spring stretch
-    double stick_stiffness = 0.0;  // k_t of the last step it touched
-  };
-  struct PairResult {
-    double force[24];  // 4 corners of tet i, then 4 of tet j
-    double energy = 0.0, dissipated = 0.0, stiffness = 0.0, penetration = 0.0;
-    double normal_force_b[3];  // the penalty force on tet j (before friction)
-    double centroid[3];        // of the overlap
-    double secant = 0.0;       // normal stiffness k_s
-    bool touching = false;
+    std::uint32_t i = 0, j = 0;  // contact sub-tets, i < j
+    double penalty = 0.0;        // Pa
+    double friction = 0.0;       // Coulomb coefficient
+    PairSpring spring;
   };
 
   void update_candidates(const Model& m);
   void gather_patches(const Model& m);
-  void evaluate(const Model& m, Pair& p, double step_dt, PairResult& r) const;
+  // Every candidate pair through the law, into results_ (in parallel).
+  template <class Law>
+  void evaluate_pairs(const Model& m, double step_dt);
 
+  BodyPairLaw law_;
   bool active_ = false;
   NbsBroadphase broadphase_;
   VerletBuffer verlet_;
@@ -109,7 +95,7 @@ class BodyContact final : public ContactModel {
   std::vector<std::int32_t> groups_;  // body of each contact sub-tet
   std::vector<CandidatePair> found_;
   std::vector<Pair> pairs_, old_pairs_;
-  std::vector<PairResult> results_;
+  std::vector<PairOutcome> results_;
   std::vector<double> node_stiffness_;  // per model node, this step
   // Per boundary node, the stiffness a flat contact would give it (8 p A / h: the potentials of
   // both sides rise by 4 / h across their elements): counted for the stable step as soon as the

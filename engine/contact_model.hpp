@@ -6,7 +6,7 @@
 // Simulation holds one of each kind and calls them in a fixed order, so the sums (and so the
 // bits) do not depend on anything else. A new kind of contact (e.g. cohesive bonds) is one class
 // implementing this, added to Simulation's list; a new law for an existing kind is one file in
-// contact/ (contact/penalty_wall_law.hpp, contact/tet_potential_contact.hpp).
+// contact/ and one name in contact/contact_laws.hpp.
 #include <vector>
 
 #include "contact/penalty_wall_law.hpp"

@@ -6,6 +6,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "elements/fbar_mode.hpp"
@@ -112,6 +113,10 @@ struct ContactPairSpec {
 };
 
 struct ContactSettings {
+  // The laws by name (contact/contact_laws.hpp, whose names these point to): between bodies,
+  // and between bodies and walls.
+  std::string_view law = "penalty_potential";
+  std::string_view wall_law = "penalty";
   double penalty_factor = 100.0;  // penalty = factor * E of the stiffer side (the thesis' k = aE)
   double friction = 0.0;          // Coulomb coefficient between bodies
   // Fraction of critical damping of every contact between two bodies or a body and a wall,

@@ -3,14 +3,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace femdem {
-namespace {
-using WallLaw = PenaltyWallLaw;  // the law of every wall (contact/penalty_wall_law.hpp)
-}  // namespace
 
 WallContact::WallContact(const Model& m, bool collect_patches)
     : active_(!m.walls.empty()), collect_patches_(collect_patches) {
+  const std::optional<WallLaw> law = wall_law_named(m.contact.wall_law);
+  if (!law) throw std::invalid_argument("unknown wall law '" + std::string(m.contact.wall_law) + "'");
+  law_ = *law;
   bool friction = false;
   for (const Wall& w : m.walls) friction = friction || w.friction > 0.0;
   if (friction) stick_.assign(3 * m.surface.size() * m.walls.size(), 0.0);
@@ -22,6 +23,12 @@ void WallContact::compute(Model& m, double step_dt, std::vector<double>& f, Cont
   for (auto& w : m.walls) w.force.setZero();
   if (collect_patches_) std::fill(patches_.begin(), patches_.end(), ContactPatch{});
   if (!active_) return;
+  std::visit([&]<class Law>(const Law&) { compute_with<Law>(m, step_dt, f, sums); }, law_);
+}
+
+template <class Law>
+void WallContact::compute_with(Model& m, double step_dt, std::vector<double>& f,
+                               ContactSums& sums) {
   const double* x = m.x.data();
   const std::size_t nw = m.walls.size();
   for (std::size_t si = 0; si < m.surface.size(); ++si) {
@@ -38,7 +45,7 @@ void WallContact::compute(Model& m, double step_dt, std::vector<double>& f, Cont
       const double d = (w.point - p).dot(w.normal);  // penetration depth
       // past the end of a bounded wall (a die's mouth) a node is as free as one in front of it
       if (d <= 0.0 || !w.acts_at(p)) {
-        if (slip) WallLaw::release(k, slip, sums);
+        if (slip) Law::release(k, slip, sums);
         continue;
       }
       if (collect_patches_) {
@@ -57,7 +64,7 @@ void WallContact::compute(Model& m, double step_dt, std::vector<double>& f, Cont
                                 .step_dt = step_dt,
                                 .normal = w.normal,
                                 .v_rel = v - w.step_velocity};
-      const Vec3 fc = WallLaw::apply(in, slip, sums);
+      const Vec3 fc = Law::apply(in, slip, sums);
       for (int c = 0; c < 3; ++c) f[3 * s.node + c] += fc[c];
       w.force -= fc;
     }

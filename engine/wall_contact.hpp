@@ -2,12 +2,13 @@
 #pragma once
 // Bodies on rigid walls: every boundary node of a free body against every wall, with the node's
 // penalty k = penalty_factor E A / h (its boundary area share A and the depth h of the element
-// behind it), through the wall law (contact/penalty_wall_law.hpp). Holds the friction spring of
+// behind it), through the scene's wall law (`[contact] wall_law`, contact/contact_laws.hpp). Holds the friction spring of
 // each (node, wall), the per-(body, wall) patches for impact damping, and each wall's contact
 // stiffness for the step of force-driven walls. Serial in node order: the sums are
 // deterministic.
 #include <vector>
 
+#include "contact/contact_laws.hpp"
 #include "engine/contact_model.hpp"
 
 namespace femdem {
@@ -24,6 +25,10 @@ class WallContact final : public ContactModel {
   double stable_step(const Model& m, double dt_element, double dt) override;
 
  private:
+  template <class Law>
+  void compute_with(Model& m, double step_dt, std::vector<double>& f, ContactSums& sums);
+
+  WallLaw law_;
   bool active_ = false;
   bool collect_patches_ = false;
   // Tangential spring stretch (3) per (surface node, wall); empty when no wall has friction.

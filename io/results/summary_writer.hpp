@@ -11,6 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include "engine/compaction.hpp"
+
 namespace femdem {
 
 enum class RunStatus { completed, unstable, interrupted };
@@ -50,10 +52,17 @@ struct BodySummary {
   std::optional<Restitution> coefficient_of_restitution;  // null unless it touched and left
 };
 
-// Closed-die compaction results (the scene's [compaction] section): named scalars, then the
-// Heckel and Kawakita fits, each written as a JSON object in this order.
+// Closed-die compaction results (the scene's [compaction] section), from the history rows.
 struct CompactionSummary {
-  std::vector<std::pair<std::string, double>> values, heckel, kawakita;
+  double max_punch_pressure = 0.0, max_punch_force = 0.0, max_radial_pressure = 0.0;
+  double initial_relative_density = 0.0, final_relative_density = 0.0;
+  double max_relative_density = 0.0, relative_density_at_max_pressure = 0.0;
+  double final_punch_displacement = 0.0, initial_solid_volume = 0.0;
+  double final_volume_change = 0.0, max_abs_volume_change = 0.0;
+  // The pressure window both fits use (the loading part of the curve within it).
+  double fit_pressure_min = 0.0, fit_pressure_max = 0.0;
+  HeckelFit heckel;
+  KawakitaFit kawakita;
 };
 
 struct RunSummary {
@@ -73,8 +82,13 @@ struct RunSummary {
 };
 
 // The JSON text (2-space indented, keys in the order of docs/OUTPUTS.md, doubles in shortest
-// round-trip form; non-finite numbers become null).
+// round-trip form; non-finite numbers become null). The keys come from one table
+// (summary_writer.cpp) that also makes the tables of docs/OUTPUTS.md (summary_keys_markdown).
 std::string summary_to_json(const RunSummary& summary);
+
+// The Markdown tables of summary.json's keys (top level, energy, per body, compaction) with
+// their units and meanings, as docs/OUTPUTS.md shows them.
+std::string summary_keys_markdown();
 
 // Writes summary_to_json(summary) to `path` atomically (temp file + fsync + rename).
 // Throws std::runtime_error.

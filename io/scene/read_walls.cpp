@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include <algorithm>
 #include <cmath>
 
+#include "contact/contact_laws.hpp"
 #include "io/scene/toml_reader.hpp"
 
 namespace femdem::scene {
@@ -255,11 +257,23 @@ void Reader::read_constraints(const toml::table& root, ModelSpec& spec, toml::ar
   }
 }
 
+std::string Reader::law_name(const toml::table& t, std::string_view key, std::string_view fallback,
+                             const std::vector<std::string>& laws) const {
+  const std::string name = opt_string(t, key, "contact").value_or(std::string(fallback));
+  if (std::find(laws.begin(), laws.end(), name) == laws.end())
+    fail(t.get(key), dotted("contact", key),
+         "unknown law '" + name + "'" + did_you_mean(name, laws) + "; laws: " + join(laws));
+  return name;
+}
+
 void Reader::read_contact(const toml::table& root, ModelSpec& spec, toml::table& out) const {
   ContactSettings& c = spec.contact;
   if (const toml::node* n = root.get("contact")) {
     const toml::table& t = require_table(n, "contact");
-    check_keys(t, "contact", {"penalty_factor", "friction", "impact_damping", "pairs"});
+    check_keys(t, "contact",
+               {"law", "wall_law", "penalty_factor", "friction", "impact_damping", "pairs"});
+    c.law = registered_name<BodyPairLaw>(law_name(t, "law", c.law, body_pair_law_names()));
+    c.wall_law = registered_name<WallLaw>(law_name(t, "wall_law", c.wall_law, wall_law_names()));
     c.penalty_factor = positive(t, "penalty_factor", "contact", c.penalty_factor, &t);
     c.friction = number(t, "friction", "contact", c.friction, &t);
     if (c.friction < 0.0)
@@ -312,6 +326,8 @@ void Reader::read_contact(const toml::table& root, ModelSpec& spec, toml::table&
     }
     if (!pairs_out.empty()) out.insert_or_assign("pairs", std::move(pairs_out));
   }
+  out.insert_or_assign("law", std::string(c.law));
+  out.insert_or_assign("wall_law", std::string(c.wall_law));
   out.insert_or_assign("penalty_factor", c.penalty_factor);
   out.insert_or_assign("friction", c.friction);
   out.insert_or_assign("impact_damping", c.impact_damping);

@@ -36,13 +36,13 @@ ModelSpec aligned_cubes(double v, double penalty_factor) {
   ModelSpec spec;
   spec.materials.push_back(steel());
   BodySpec a, b;
-  a.name = "a";
+  a.name = std::string(1, 'a');  // not from a literal: GCC 12's false -Wrestrict (bug 105329)
   a.material = 0;
   a.mesh = test::kuhn_box(2, 2, 2, Vec3(s, s, s));
   for (Vec3& p : a.mesh.nodes) p += at;
   a.velocity = Vec3(0, 0, v);
   b = a;
-  b.name = "b";
+  b.name = std::string(1, 'b');
   for (Vec3& p : b.mesh.nodes) p.z() += s;
   b.velocity = Vec3(0, 0, -v);
   spec.bodies = {a, b};

@@ -28,11 +28,13 @@ inline ModelSpec two_blocks_closing(Vec3 b_origin, double closing_speed) {
   ModelSpec s;
   s.materials.push_back(rubbery());
   BodySpec a, b;
-  a.name = "a";
+  // (moved in, not assigned from a literal: GCC 12 warns falsely about the literal's copy,
+  // -Wrestrict, bug 105329)
+  a.name = std::string(1, 'a');
   a.material = 0;
   a.mesh = box_at(Vec3(0.1, 0.1, 0.1), Vec3(0, 0, 0));
   a.velocity = Vec3(0, 0, 0.5 * closing_speed);
-  b.name = "b";
+  b.name = std::string(1, 'b');
   b.material = 0;
   b.mesh = box_at(Vec3(0.1, 0.1, 0.1), b_origin);
   b.velocity = Vec3(0, 0, -0.5 * closing_speed);

@@ -57,6 +57,9 @@ const std::vector<BadCase> kBadCases = {
   {"region_unknown_key", 19, "fix = [\"z\"]\nregion = { plane_point = [0, 0, 0], plane_normal = [0, 0, 1], tolerence = 1e-9 }", "", "constraints[0].region.tolerence", 20, "did you mean 'tolerance'?"},
   {"contact_negative_penalty", 0, "", "[contact]\npenalty_factor = -1\n", "contact.penalty_factor", 21, "must be positive"},
   {"contact_unknown_key", 0, "", "[contact]\nfricton = 0.2\n", "contact.fricton", 21, "did you mean 'friction'?"},
+  {"contact_unknown_law", 0, "", "[contact]\nlaw = \"penalty_potentail\"\n", "contact.law", 21, "unknown law 'penalty_potentail' (did you mean 'penalty_potential'?); laws: penalty_potential"},
+  {"contact_unknown_wall_law", 0, "", "[contact]\nwall_law = \"hertz\"\n", "contact.wall_law", 21, "unknown law 'hertz'"},
+  {"contact_law_not_text", 0, "", "[contact]\nlaw = 3\n", "contact.law", 21, "string"},
 };
 // clang-format on
 
@@ -104,6 +107,11 @@ friction = 0.3
   EXPECT_EQ(m.walls[1].velocity, Vec3(0, 0, -1));
   EXPECT_DOUBLE_EQ(m.contact.penalty_factor, 50.0);
   EXPECT_DOUBLE_EQ(m.contact.friction, 0.3);
+  // the laws: the defaults, named in the resolved scene
+  EXPECT_EQ(m.contact.law, "penalty_potential");
+  EXPECT_EQ(m.contact.wall_law, "penalty");
+  EXPECT_NE(s.resolved_toml.find("law = \"penalty_potential\""), std::string::npos);
+  EXPECT_NE(s.resolved_toml.find("wall_law = \"penalty\""), std::string::npos);
 }
 
 TEST(SceneReader, WallVelocityHistoryIsReadAndEchoed) {

@@ -30,17 +30,17 @@ CompactionSummary CompactionCurve::summarise() const {
   const CompactionSpec& spec = monitor_.spec();
   const double lo = spec.fit_min_pressure > 0.0 ? spec.fit_min_pressure : 0.2 * p_max;
   const double hi = spec.fit_max_pressure > 0.0 ? spec.fit_max_pressure : p_max;
-  out.values = {{"max_punch_pressure", p_max},
-                {"max_punch_force", max_force},
-                {"max_radial_pressure", max_radial},
-                {"initial_relative_density", first.relative_density},
-                {"final_relative_density", last.relative_density},
-                {"max_relative_density", max_density},
-                {"relative_density_at_max_pressure", curve[peak].relative_density},
-                {"final_punch_displacement", last.punch_displacement},
-                {"initial_solid_volume", monitor_.initial_solid_volume()},
-                {"final_volume_change", last.volume_ratio - 1.0},
-                {"max_abs_volume_change", max_dv}};
+  out.max_punch_pressure = p_max;
+  out.max_punch_force = max_force;
+  out.max_radial_pressure = max_radial;
+  out.initial_relative_density = first.relative_density;
+  out.final_relative_density = last.relative_density;
+  out.max_relative_density = max_density;
+  out.relative_density_at_max_pressure = curve[peak].relative_density;
+  out.final_punch_displacement = last.punch_displacement;
+  out.initial_solid_volume = monitor_.initial_solid_volume();
+  out.final_volume_change = last.volume_ratio - 1.0;
+  out.max_abs_volume_change = max_dv;
   // the fits use the loading part: the rows up to the largest punch pressure
   std::vector<double> P, D, C;
   for (std::size_t i = 0; i <= peak; ++i) {
@@ -48,18 +48,10 @@ CompactionSummary CompactionCurve::summarise() const {
     D.push_back(curve[i].relative_density);
     C.push_back(curve[i].column_strain);
   }
-  const HeckelFit h = fit_heckel(P, D, lo, hi);
-  out.heckel = {{"K", h.K},
-                {"A", h.A},
-                {"yield_pressure", h.yield_pressure},
-                {"r2", h.r2},
-                {"pressure_min", lo},
-                {"pressure_max", hi},
-                {"points", static_cast<double>(h.points)}};
-  const KawakitaFit k = fit_kawakita(P, C, lo, hi);
-  out.kawakita = {{"a", k.a},           {"b", k.b},
-                  {"r2", k.r2},         {"pressure_min", lo},
-                  {"pressure_max", hi}, {"points", static_cast<double>(k.points)}};
+  out.fit_pressure_min = lo;
+  out.fit_pressure_max = hi;
+  out.heckel = fit_heckel(P, D, lo, hi);
+  out.kawakita = fit_kawakita(P, C, lo, hi);
   return out;
 }
 

@@ -261,7 +261,8 @@ std::string output_tables_markdown() {
                            "<wall>.");
   append_table<Run>(md, "Then, when bodies can touch each other:", kContactColumns, "");
   append_table<Compaction>(md, "Then, for scenes with `[compaction]`:", kCompactionColumns, "");
-  md += "\nsummary.json `extra`:\n\n| key | unit | meaning | written when |\n|---|---|---|---|\n";
+  md += summary_keys_markdown();
+  md += "\n`extra`:\n\n| key | unit | meaning | written when |\n|---|---|---|---|\n";
   for (const SummaryKey& k : kSummaryKeys)
     md +=
         std::string("| `") + k.name + "` | " + k.unit + " | " + k.meaning + " | " + k.when + " |\n";
