@@ -17,8 +17,8 @@ namespace femdem {
 
 // One pair: tetrahedron a of one body, b of the other, read from the model's arrays.
 struct PairInput {
-  const double* x = nullptr;  // node positions, 3 per node
-  const double* v = nullptr;  // node velocities (half step), 3 per node
+  const double* x = nullptr;                     // node positions, 3 per node
+  const double* v = nullptr;                     // node velocities (half step), 3 per node
   std::array<std::int32_t, 4> tet_a{}, tet_b{};  // corner nodes
   double penalty = 0.0;   // Pa: [contact] penalty_factor x E of the stiffer side
   double friction = 0.0;  // Coulomb coefficient of the two bodies
@@ -33,7 +33,7 @@ struct PairSpring {
 
 struct PairOutcome {
   bool touching = false;
-  double force[24];  // on the 4 corners of a, then the 4 of b (only when touching)
+  double force[24];          // on the 4 corners of a, then the 4 of b (only when touching)
   double energy = 0.0;       // stored in the pair now
   double dissipated = 0.0;   // by friction over the step (also when it stopped touching)
   double stiffness = 0.0;    // added to each of the 8 corners' nodes for the stable step

@@ -34,7 +34,8 @@ std::vector<std::string> names() {
   std::vector<std::string> out;
   [&]<std::size_t... I>(std::index_sequence<I...>) {
     (out.emplace_back(std::variant_alternative_t<I, Variant>::name), ...);
-  }(std::make_index_sequence<std::variant_size_v<Variant>>{});
+  }
+  (std::make_index_sequence<std::variant_size_v<Variant>>{});
   return out;
 }
 }  // namespace contact_laws_detail
@@ -58,6 +59,8 @@ std::string_view registered_name(std::string_view name) {
 inline std::vector<std::string> body_pair_law_names() {
   return contact_laws_detail::names<BodyPairLaw>();
 }
-inline std::vector<std::string> wall_law_names() { return contact_laws_detail::names<WallLaw>(); }
+inline std::vector<std::string> wall_law_names() {
+  return contact_laws_detail::names<WallLaw>();
+}
 
 }  // namespace femdem

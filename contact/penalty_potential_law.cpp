@@ -77,7 +77,8 @@ void PenaltyPotentialLaw::evaluate(const PairInput& in, PairSpring& spring, Pair
   if (!out.touching || !(o.energy > 0.0)) {
     out.touching = false;
     // released: the spring's energy goes to friction
-    const double u2 = spring.stick[0] * spring.stick[0] + spring.stick[1] * spring.stick[1] + spring.stick[2] * spring.stick[2];
+    const double u2 = spring.stick[0] * spring.stick[0] + spring.stick[1] * spring.stick[1] +
+                      spring.stick[2] * spring.stick[2];
     out.dissipated = 0.5 * spring.stick_stiffness * u2;
     spring.stick[0] = spring.stick[1] = spring.stick[2] = 0.0;
     return;

@@ -82,20 +82,32 @@ inline void add_force(const double S6[6], const double cof[3][3], double scale, 
 // Nodal mode only: corner_J (in) the 4 corner nodes' averaged volume ratios; pressure_weight
 // (out) sum_g w_g p_g L_c(g) / J0_g per corner c: the element's share of dW/dJbar_c, which the
 // caller gathers per node and turns into forces (see Simulation::compute_forces).
+// Xe (optional): the 30 reference coordinates; F is then I + sum_a u_a (x) dN_a/dX with the
+// displacements u = x - X, whose rounding error is relative to the displacement rather than to
+// the position (a body far from the origin, or a small strain, keeps its digits).
 template <class Material>
 inline ElementResult tet10_internal_forces(const double* xe, const double* dNdX, const double* w,
                                            const Material& material, FbarMode fbar,
                                            GaussPointState* state, double dt, double* fe,
                                            double* sigma, const double* corner_J = nullptr,
                                            double* pressure_weight = nullptr,
-                                           double subtet_volume0 = 0.0) {
+                                           double subtet_volume0 = 0.0,
+                                           const double* Xe = nullptr) {
   ElementResult res;
   res.min_J = HUGE_VAL;
   for (int i = 0; i < 30; ++i) fe[i] = 0.0;
   double F[4][3][3];
   double J[4];
+  double ue[30];
+  if (Xe)
+    for (int i = 0; i < 30; ++i) ue[i] = xe[i] - Xe[i];
   for (int g = 0; g < 4; ++g) {
-    detail::nodal_gradient(xe, dNdX + g * 30, F[g]);
+    if (Xe) {
+      detail::nodal_gradient(ue, dNdX + g * 30, F[g]);
+      for (int i = 0; i < 3; ++i) F[g][i][i] += 1.0;
+    } else {
+      detail::nodal_gradient(xe, dNdX + g * 30, F[g]);
+    }
     J[g] = detail::det3(F[g]);
     res.min_J = std::fmin(res.min_J, J[g]);
   }

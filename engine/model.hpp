@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "elements/tet10_mesh.hpp"
+#include "engine/element_update/element_states.hpp"
 #include "engine/model_spec.hpp"
 #include "materials/finite_strain_update.hpp"
 
@@ -96,6 +97,11 @@ struct Model {
   // Gauss weights times det J0 (4): 124 doubles per element.
   std::vector<double> dNdX;
   std::vector<double> gauss_weight;
+  // Straight-sided elements (constant reference Jacobian J0: mid-edge nodes at the midpoints)
+  // have J0^-1 here (9 per element, row-major; zeros for a curved element), from which the
+  // SIMD update forms dN/dX itself (engine/element_update/element_update.hpp).
+  std::vector<std::uint8_t> straight_sided;
+  std::vector<double> inverse_jacobian;
   // Stable-step shape factor per element: omega_max * h0 / c_d, from the element eigenproblem.
   std::vector<double> frequency_factor;
 
@@ -103,8 +109,9 @@ struct Model {
   std::vector<double> subtet_volume0;  // reference volume of the 8 sub-tets (FbarMode::SubTet)
 
   // --- Gauss-point state (4 per element) ---
-  std::vector<GaussPointState> gp_state;      // plastic deformation and equivalent plastic strain
-  std::vector<double> stress;                 // Cauchy stress, 6 per point: xx yy zz xy yz xz
+  std::vector<ElementStates> states;  // plastic deformation and equivalent plastic strain
+  // Cauchy stress, [element][component][Gauss point], components xx yy zz xy yz xz
+  std::vector<double> stress;
   std::vector<double> strain_energy_density;  // per reference volume
 
   // --- node -> (element, local node) map for the deterministic gather (CSR) ---

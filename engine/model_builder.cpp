@@ -16,10 +16,15 @@ namespace femdem {
 namespace {
 
 // Reference gradients and weights of one element; returns false if det J0 <= 0 anywhere.
+// jinv (9): J0^-1 if J0 is the same at the 4 Gauss points (to 1e-13 of its size: a
+// straight-sided element, whose J0 is constant since it is linear in the natural coordinates),
+// else left alone; `straight` says which.
 bool reference_gradients(const std::vector<Vec3>& nodes, const Tet10& el, double* dNdX, double* w,
-                         double& min_detJ, double& volume) {
+                         double& min_detJ, double& volume, double* jinv, bool& straight) {
   volume = 0.0;
   min_detJ = HUGE_VAL;
+  Eigen::Matrix3d J_first;
+  double J_spread = 0.0;
   for (int g = 0; g < tet10::kGauss; ++g) {
     const auto dxi = tet10::shape_derivatives(tet10::gauss_point(g));
     Eigen::Matrix3d J = Eigen::Matrix3d::Zero();  // J(i,k) = dX_i / dxi_k
@@ -29,7 +34,12 @@ bool reference_gradients(const std::vector<Vec3>& nodes, const Tet10& el, double
     const double det = J.determinant();
     min_detJ = std::min(min_detJ, det);
     if (!(det > 0.0)) return false;
+    if (g == 0) J_first = J;
+    J_spread = std::max(J_spread, (J - J_first).cwiseAbs().maxCoeff());
     const Eigen::Matrix3d Jinv = J.inverse();
+    if (g == 0)
+      for (int k = 0; k < 3; ++k)
+        for (int j = 0; j < 3; ++j) jinv[3 * k + j] = Jinv(k, j);
     for (int a = 0; a < 10; ++a)
       for (int j = 0; j < 3; ++j) {
         double v = 0.0;
@@ -39,6 +49,9 @@ bool reference_gradients(const std::vector<Vec3>& nodes, const Tet10& el, double
     w[g] = det / 24.0;  // reference tet volume 1/6, 4 equal weights
     volume += w[g];
   }
+  straight = J_spread <= 1e-13 * J_first.cwiseAbs().maxCoeff();
+  if (!straight)
+    for (int k = 0; k < 9; ++k) jinv[k] = 0.0;
   return true;
 }
 
@@ -72,9 +85,11 @@ void allocate(Model& m, std::int32_t nn, std::int32_t ne) {
   m.element_material.resize(ne);
   m.dNdX.resize(static_cast<std::size_t>(ne) * 120);
   m.gauss_weight.resize(static_cast<std::size_t>(ne) * 4);
+  m.straight_sided.assign(ne, 0);
+  m.inverse_jacobian.assign(static_cast<std::size_t>(ne) * 9, 0.0);
   m.frequency_factor.resize(ne);
   m.stress.assign(static_cast<std::size_t>(ne) * 24, 0.0);
-  m.gp_state.assign(static_cast<std::size_t>(ne) * 4, GaussPointState{});
+  m.states.assign(ne, ElementStates{});
   m.element_fbar.assign(ne, FbarMode::Off);
   m.subtet_volume0.assign(ne, 0.0);
   m.strain_energy_density.assign(static_cast<std::size_t>(ne) * 4, 0.0);
@@ -115,10 +130,14 @@ void add_mesh(Model& m, const BodySpec& bs, std::int32_t bi, Body& body) {
     double min_det = 0.0, vol = 0.0;
     double* dN = m.dNdX.data() + static_cast<std::size_t>(ge) * 120;
     double* w = m.gauss_weight.data() + static_cast<std::size_t>(ge) * 4;
-    if (!reference_gradients(bs.mesh.nodes, local, dN, w, min_det, vol)) {
+    bool straight = false;
+    if (!reference_gradients(bs.mesh.nodes, local, dN, w, min_det, vol,
+                             m.inverse_jacobian.data() + 9 * static_cast<std::size_t>(ge),
+                             straight)) {
       if (bad_count++ == 0) bad = std::to_string(e);
       continue;
     }
+    m.straight_sided[ge] = straight;
     const double me = mat.density * vol;
     for (int a = 0; a < 10; ++a)
       m.mass[global[a]] += me * (a < 4 ? tet10::kHrzCorner : tet10::kHrzMidEdge);

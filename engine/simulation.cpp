@@ -12,8 +12,20 @@
 #include "materials/symmetric_eigen3.hpp"
 
 namespace femdem {
+namespace {
+
+std::vector<MaterialKernel> compile_kernels(const std::vector<MaterialParams>& materials) {
+  std::vector<MaterialKernel> out;
+  for (const MaterialParams& p : materials) out.push_back(compile_material(p));
+  return out;
+}
+
+}  // namespace
+
 Simulation::Simulation(Model model)
     : model_(std::move(model)),
+      kernels_(compile_kernels(model_.materials)),
+      element_pass_(model_, kernels_),
       wall_contact_(model_, model_.contact.impact_damping > 0.0),
       body_contact_(model_) {
   const auto nn = static_cast<std::size_t>(model_.node_count);
@@ -21,6 +33,7 @@ Simulation::Simulation(Model model)
   accel_.assign(3 * nn, 0.0);
   reaction_.assign(3 * nn, 0.0);
   elem_force_.assign(30 * ne, 0.0);
+  elem_result_.assign(ne, ElementResult{});
   elem_energy_.assign(ne, 0.0);
   elem_dt_.assign(ne, 0.0);
   elem_dissipation_.assign(ne, 0.0);
@@ -44,7 +57,6 @@ Simulation::Simulation(Model model)
   }
   for (const MaterialParams& p : model_.materials) {
     CompiledMaterial c;
-    c.kernel = compile_material(p);
     c.wave_speed = std::sqrt(p.p_wave_modulus() / p.density);
     c.density = p.density;
     compiled_.push_back(std::move(c));
@@ -104,47 +116,35 @@ void Simulation::compute_forces(double step_dt) {
     }
   }
 
-  // 1. elements: independent, written to per-element buffers
+  // 1. elements: independent, written to per-element buffers (engine/element_pass.hpp)
+  element_pass_.update(m, kernels_, step_dt, has_nodal_fbar_ ? node_J_.data() : nullptr,
+                       has_nodal_fbar_ ? elem_pressure_weight_.data() : nullptr, elem_force_,
+                       elem_result_);
+  // 1a. per element: its energies, bulk viscosity and stable step
 #pragma omp parallel for schedule(static) if (ne > kParallelMinElements)
   for (std::int32_t e = 0; e < ne; ++e) {
     const Tet10& c = m.conn[e];
-    double xe[30];
-    for (int a = 0; a < 10; ++a)
-      for (int k = 0; k < 3; ++k) xe[3 * a + k] = x[3 * c[a] + k];
-    const std::size_t es = static_cast<std::size_t>(e);
+    const ElementResult& r = elem_result_[e];
     const CompiledMaterial& cm = compiled_[m.element_material[e]];
-    const double* dN = m.dNdX.data() + 120 * es;
-    const double* w = m.gauss_weight.data() + 4 * es;
-    GaussPointState* st = m.gp_state.data() + 4 * es;
-    double* fe = elem_force_.data() + 30 * es;
-    double* sig = m.stress.data() + 24 * es;
-    const FbarMode fbar = m.element_fbar[e];
-    double cJ[4] = {1, 1, 1, 1};
-    double* q = nullptr;
-    if (fbar == FbarMode::Nodal) {
-      for (int k = 0; k < 4; ++k) cJ[k] = node_J_[c[k]];
-      q = elem_pressure_weight_.data() + 4 * es;
-    }
-    // one well-predicted branch per element (the model's kernel), none per Gauss point
-    const ElementResult r = std::visit(
-        [&](const auto& model) {
-          return tet10_internal_forces(xe, dN, w, model, fbar, st, step_dt, fe, sig, cJ, q,
-                                       m.subtet_volume0[e]);
-        },
-        cm.kernel);
     elem_energy_[e] = r.min_J > 0.0 ? r.energy : -HUGE_VAL;
     elem_dissipation_[e] = r.dissipation;
     double cd = cm.wave_speed;
+    double xe[30];
+    const int nodes = bulk_viscosity ? 10 : 4;  // the corner altitude needs the corners only
+    for (int a = 0; a < nodes; ++a)
+      for (int k = 0; k < 3; ++k) xe[3 * a + k] = x[3 * c[a] + k];
     const double h = corner_tet_min_altitude(xe);
     if (bulk_viscosity && r.min_J > 0.0) {
+      const std::size_t es = static_cast<std::size_t>(e);
       double ve[30];
       for (int a = 0; a < 10; ++a)
         for (int k = 0; k < 3; ++k) ve[3 * a + k] = m.v[3 * c[a] + k];
       // l: the element's length across its thinnest direction (corner altitude; TET10 has two
       // nodes along it)
-      elem_viscous_power_[e] = tet10_bulk_viscosity(xe, ve, dN, w, cm.density, cd, 0.5 * h,
-                                                    m.settings.bulk_viscosity_linear,
-                                                    m.settings.bulk_viscosity_quadratic, fe, cd);
+      elem_viscous_power_[e] = tet10_bulk_viscosity(
+          xe, ve, m.dNdX.data() + 120 * es, m.gauss_weight.data() + 4 * es, cm.density, cd,
+          0.5 * h, m.settings.bulk_viscosity_linear, m.settings.bulk_viscosity_quadratic,
+          elem_force_.data() + 30 * es, cd);
     }
     elem_dt_[e] = (r.min_J > 0.0 && h > 0.0) ? 2.0 * h / (m.frequency_factor[e] * cd) : -1.0;
   }

@@ -10,6 +10,7 @@
 
 #include "engine/body_contact.hpp"
 #include "engine/contact_patch.hpp"
+#include "engine/element_pass.hpp"
 #include "engine/impact_damping.hpp"
 #include "engine/model.hpp"
 #include "engine/wall_contact.hpp"
@@ -61,6 +62,10 @@ class Simulation {
   void step(double dt_limit = HUGE_VAL);
 
   const Model& model() const { return model_; }
+  // The element kernel: the SIMD update where it applies (default) or the scalar reference for
+  // every element (tests and benchmarks compare the two).
+  void choose_element_kernel(ElementKernelChoice choice) { element_pass_.choose(choice); }
+  const ElementPass& element_pass() const { return element_pass_; }
   const BodyContact& body_contact() const { return body_contact_; }
   double time() const { return time_; }
   std::int64_t steps() const { return steps_; }
@@ -107,13 +112,15 @@ class Simulation {
 
   // A material's return mapping, built once from its parameters.
   struct CompiledMaterial {
-    MaterialKernel kernel;
     double wave_speed = 0.0;  // dilatational, sqrt((K + 4G/3) / rho)
     double density = 0.0;
   };
 
   Model model_;
   std::vector<CompiledMaterial> compiled_;
+  std::vector<MaterialKernel> kernels_;  // compiled_[i].kernel, as the element pass takes them
+  ElementPass element_pass_;
+  std::vector<ElementResult> elem_result_;  // per element, this step
   std::vector<double> elem_dissipation_;  // per element, this step
   double plastic_dissipation_ = 0.0;
   double contact_dissipation_ = 0.0;

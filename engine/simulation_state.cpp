@@ -135,10 +135,10 @@ BodyState Simulation::body_state(int bi) const {
     spin_momentum += m.mass[n] * r.cross(u);
   }
   if (inertia.determinant() > 0.0) s.angular_velocity = inertia.ldlt().solve(spin_momentum);
-  for (std::size_t g = 4 * static_cast<std::size_t>(b.first_element);
-       g < 4 * static_cast<std::size_t>(b.first_element + b.element_count); ++g)
-    s.max_equivalent_plastic_strain =
-        std::max(s.max_equivalent_plastic_strain, m.gp_state[g].eps_p);
+  for (std::int32_t e = b.first_element; e < b.first_element + b.element_count; ++e)
+    for (int g = 0; g < 4; ++g)
+      s.max_equivalent_plastic_strain =
+          std::max(s.max_equivalent_plastic_strain, m.states[e].eps_p[g]);
   return s;
 }
 
@@ -151,8 +151,12 @@ double Simulation::max_principal_stress(int bi) const {
 #pragma omp parallel for schedule(static) \
     reduction(max                         \
               : largest) if (g1 - g0 > 4 * kParallelMinElements)
-  for (std::int64_t g = g0; g < g1; ++g)
-    largest = std::max(largest, largest_eigenvalue3(model_.stress.data() + 6 * g));
+  for (std::int64_t g = g0; g < g1; ++g) {
+    // the point's 6 components, 4 apart in the [element][component][point] layout
+    const double* first = model_.stress.data() + 24 * (g / 4) + g % 4;
+    const double s[6] = {first[0], first[4], first[8], first[12], first[16], first[20]};
+    largest = std::max(largest, largest_eigenvalue3(s));
+  }
   return largest;
 }
 
@@ -168,11 +172,10 @@ void Simulation::element_stress(std::vector<double>& stress6, std::vector<double
     double s[6] = {};
     for (int g = 0; g < 4; ++g)
       for (int k = 0; k < 6; ++k)
-        s[k] += 0.25 * model_.stress[24 * static_cast<std::size_t>(e) + 6 * g + k];
+        s[k] += 0.25 * model_.stress[24 * static_cast<std::size_t>(e) + 4 * k + g];
     for (int k = 0; k < 6; ++k) stress6[6 * e + k] = s[k];
     double ep = 0.0;
-    for (int g = 0; g < 4; ++g)
-      ep += 0.25 * model_.gp_state[4 * static_cast<std::size_t>(e) + g].eps_p;
+    for (int g = 0; g < 4; ++g) ep += 0.25 * model_.states[e].eps_p[g];
     eq_plastic[e] = ep;
     const double p = -(s[0] + s[1] + s[2]) / 3.0;
     pressure[e] = p;

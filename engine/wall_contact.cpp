@@ -10,7 +10,8 @@ namespace femdem {
 WallContact::WallContact(const Model& m, bool collect_patches)
     : active_(!m.walls.empty()), collect_patches_(collect_patches) {
   const std::optional<WallLaw> law = wall_law_named(m.contact.wall_law);
-  if (!law) throw std::invalid_argument("unknown wall law '" + std::string(m.contact.wall_law) + "'");
+  if (!law)
+    throw std::invalid_argument("unknown wall law '" + std::string(m.contact.wall_law) + "'");
   law_ = *law;
   bool friction = false;
   for (const Wall& w : m.walls) friction = friction || w.friction > 0.0;

@@ -2,10 +2,10 @@
 #pragma once
 // Bodies on rigid walls: every boundary node of a free body against every wall, with the node's
 // penalty k = penalty_factor E A / h (its boundary area share A and the depth h of the element
-// behind it), through the scene's wall law (`[contact] wall_law`, contact/contact_laws.hpp). Holds the friction spring of
-// each (node, wall), the per-(body, wall) patches for impact damping, and each wall's contact
-// stiffness for the step of force-driven walls. Serial in node order: the sums are
-// deterministic.
+// behind it), through the scene's wall law (`[contact] wall_law`, contact/contact_laws.hpp). Holds
+// the friction spring of each (node, wall), the per-(body, wall) patches for impact damping, and
+// each wall's contact stiffness for the step of force-driven walls. Serial in node order: the sums
+// are deterministic.
 #include <vector>
 
 #include "contact/contact_laws.hpp"

@@ -22,14 +22,17 @@ struct SummaryKey {
   Json (*value)(const S&);
 };
 
-Json vec3(const std::array<double, 3>& v) { return Json::array({v[0], v[1], v[2]}); }
+Json vec3(const std::array<double, 3>& v) {
+  return Json::array({v[0], v[1], v[2]});
+}
 
 const SummaryKey<RunSummary> kRunKeys[] = {
     {"scene", "-", "the scene file as given", [](const RunSummary& s) { return Json(s.scene); }},
     {"status", "-",
      "`completed`, `unstable` (the run diverged, exit code 3) or `interrupted` (by a signal)",
      [](const RunSummary& s) { return Json(to_string(s.status)); }},
-    {"end_time", "s", "simulated time reached", [](const RunSummary& s) { return Json(s.end_time); }},
+    {"end_time", "s", "simulated time reached",
+     [](const RunSummary& s) { return Json(s.end_time); }},
     {"steps", "-", "time steps taken", [](const RunSummary& s) { return Json(s.steps); }},
     {"time_step", "s", "the last step", [](const RunSummary& s) { return Json(s.time_step); }},
     {"wall_time_s", "s", "wall time of the whole run",
@@ -126,24 +129,23 @@ const SummaryKey<Compaction> kHeckelKeys[] = {
     {"A", "-", "intercept", [](const Compaction& c) { return Json(c.heckel.A); }},
     {"yield_pressure", "Pa", "1 / K, the mean yield pressure",
      [](const Compaction& c) { return Json(c.heckel.yield_pressure); }},
-    {"r2", "-", "R² of the fit",
-     [](const Compaction& c) { return Json(c.heckel.r2); }},
+    {"r2", "-", "R² of the fit", [](const Compaction& c) { return Json(c.heckel.r2); }},
     {"pressure_min", "Pa", "lower end of the fitted pressures",
      [](const Compaction& c) { return Json(c.fit_pressure_min); }},
-    {"pressure_max", "Pa", "upper end", [](const Compaction& c) { return Json(c.fit_pressure_max); }},
+    {"pressure_max", "Pa", "upper end",
+     [](const Compaction& c) { return Json(c.fit_pressure_max); }},
     {"points", "-", "history rows used", [](const Compaction& c) { return Json(c.heckel.points); }},
 };
 
 const SummaryKey<Compaction> kKawakitaKeys[] = {
     {"a", "-", "limiting column strain, 1 / slope of P / C against P",
      [](const Compaction& c) { return Json(c.kawakita.a); }},
-    {"b", "1/Pa", "slope / intercept",
-     [](const Compaction& c) { return Json(c.kawakita.b); }},
-    {"r2", "-", "R² of the fit",
-     [](const Compaction& c) { return Json(c.kawakita.r2); }},
+    {"b", "1/Pa", "slope / intercept", [](const Compaction& c) { return Json(c.kawakita.b); }},
+    {"r2", "-", "R² of the fit", [](const Compaction& c) { return Json(c.kawakita.r2); }},
     {"pressure_min", "Pa", "lower end of the fitted pressures",
      [](const Compaction& c) { return Json(c.fit_pressure_min); }},
-    {"pressure_max", "Pa", "upper end", [](const Compaction& c) { return Json(c.fit_pressure_max); }},
+    {"pressure_max", "Pa", "upper end",
+     [](const Compaction& c) { return Json(c.fit_pressure_max); }},
     {"points", "-", "history rows used",
      [](const Compaction& c) { return Json(c.kawakita.points); }},
 };
@@ -200,8 +202,8 @@ std::string summary_keys_markdown() {
   std::string md;
   append_table<RunSummary>(md, "summary.json, top level:", kRunKeys, "");
   append_table<EnergySummary>(md, "`energy` (at the end of the run):", kEnergyKeys, "");
-  append_table<BodySummary>(md, "`bodies.<body>`, for every body in the scene's order:",
-                            kBodyKeys, "");
+  append_table<BodySummary>(md, "`bodies.<body>`, for every body in the scene's order:", kBodyKeys,
+                            "");
   append_table<Compaction>(md, "`compaction` (scenes with `[compaction]`):", kCompactionKeys, "");
   append_table<Compaction>(md, "`compaction.heckel`:", kHeckelKeys, "");
   append_table<Compaction>(md, "`compaction.kawakita`:", kKawakitaKeys, "");

@@ -194,7 +194,9 @@ TEST(Loading, LargestPrincipalStressOfAPulledBlock) {
   const Model& m = sim.model();
   double expected = -HUGE_VAL;
   for (std::size_t g = 0; g < m.stress.size() / 6; ++g) {
-    const double* t = m.stress.data() + 6 * g;
+    // Model::stress is [element][component][point]
+    const double* first = m.stress.data() + 24 * (g / 4) + g % 4;
+    const double t[6] = {first[0], first[4], first[8], first[12], first[16], first[20]};
     Eigen::Matrix3d S;
     S << t[0], t[3], t[5], t[3], t[1], t[4], t[5], t[4], t[2];
     expected = std::max(expected,

@@ -76,8 +76,7 @@ Command add_run(CLI::App& app, const std::string& exe, const std::string& comman
   run->add_option("--out", s->out_dir, "Output folder (default: out/<scene file stem>/)");
   run->add_option("--set", s->overrides, "Override a scene value: KEY=VALUE (repeatable)")
       ->allow_extra_args(false);
-  run->add_option("--threads", s->threads,
-                  "Number of threads (0: all cores; default: the scene's)")
+  run->add_option("--threads", s->threads, "Number of threads (0: all cores; default: the scene's)")
       ->check(CLI::NonNegativeNumber);
   run->add_flag("--quiet", s->quiet, "Print nothing but errors");
   run->add_flag("--no-plot", s->no_plot,
@@ -119,8 +118,7 @@ Command add_check(CLI::App& app) {
             if (s->material_name.empty() != s->strain_path.empty())
               throw femdem::InputError("--material and --strain-path go together");
             if (!s->material_name.empty())
-              return femdem::material_point(scene, s->material_name, s->strain_path,
-                                            s->substeps);
+              return femdem::material_point(scene, s->material_name, s->strain_path, s->substeps);
             for (const auto& note : scene.notes) fmt::print("{}\n", note);
             if (!scene.notes.empty()) fmt::print("\n");
             femdem::print_scene_summary(scene);
@@ -192,8 +190,7 @@ Command add_pack(CLI::App& app) {
                    "body_centred_cubic, face_centred_cubic");
   pack->add_option("--count", pp.count,
                    "Number of particles (random: required; lattice: default all that fit)");
-  pack->add_option("--distribution", pp.distribution,
-                   "monodisperse (default), uniform, lognormal");
+  pack->add_option("--distribution", pp.distribution, "monodisperse (default), uniform, lognormal");
   pack->add_option("--diameter", pp.diameter, "Monodisperse diameter (m)");
   pack->add_option("--diameter-min", pp.diameter_min,
                    "Uniform: smallest diameter; lognormal: clip (default mean exp(-3 sigma))");

@@ -1,0 +1,276 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Per-instruction-set header (see materials/lanes/lanes8-inl.h): the SIMD update of a pair of
+// TET10 elements (element_update.hpp), included by the generated per-variant sources
+// (element_update_variant.cpp.in), one per F-bar mode and gradient kind, so that the compiler
+// works on them in parallel.
+#if defined(FEMDEM_ELEMENT_PAIRS_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef FEMDEM_ELEMENT_PAIRS_INL_H_
+#undef FEMDEM_ELEMENT_PAIRS_INL_H_
+#else
+#define FEMDEM_ELEMENT_PAIRS_INL_H_
+#endif
+
+#include <cmath>
+#include <type_traits>
+#include <variant>
+
+#include "elements/tet10_shape.hpp"
+#include "engine/element_kernel.hpp"
+#include "engine/element_update/element_update.hpp"
+#include "materials/lanes/material_lanes-inl.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace femdem::HWY_NAMESPACE {
+namespace element_pairs_detail {
+
+// dN_a/dxi_k at the 4 Gauss points, as packs: lanes g0..g3 twice (both elements of a pair).
+struct NaturalGradients {
+  alignas(64) double d[10][3][8];
+};
+inline const NaturalGradients& natural_gradients() {
+  static const NaturalGradients table = [] {
+    NaturalGradients t{};
+    for (int g = 0; g < 4; ++g) {
+      const auto dxi = tet10::shape_derivatives(tet10::gauss_point(g));
+      for (int a = 0; a < 10; ++a)
+        for (int k = 0; k < 3; ++k) t.d[a][k][g] = t.d[a][k][g + 4] = dxi[a][k];
+    }
+    return t;
+  }();
+  return table;
+}
+
+HWY_INLINE Lanes8 det3(const Lanes8 A[3][3]) {
+  return A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) -
+         A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
+         A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
+}
+
+// cof = det(A) A^-T
+HWY_INLINE void cofactor3(const Lanes8 F[3][3], Lanes8 cof[3][3]) {
+  cof[0][0] = F[1][1] * F[2][2] - F[1][2] * F[2][1];
+  cof[0][1] = F[1][2] * F[2][0] - F[1][0] * F[2][2];
+  cof[0][2] = F[1][0] * F[2][1] - F[1][1] * F[2][0];
+  cof[1][0] = F[0][2] * F[2][1] - F[0][1] * F[2][2];
+  cof[1][1] = F[0][0] * F[2][2] - F[0][2] * F[2][0];
+  cof[1][2] = F[0][1] * F[2][0] - F[0][0] * F[2][1];
+  cof[2][0] = F[0][1] * F[1][2] - F[0][2] * F[1][1];
+  cof[2][1] = F[0][2] * F[1][0] - F[0][0] * F[1][2];
+  cof[2][2] = F[0][0] * F[1][1] - F[0][1] * F[1][0];
+}
+
+// The pair's gradients: either J0^-1 with the natural derivatives (straight-sided) or the
+// table, and the Gauss weights.
+struct PairGradients {
+  Lanes8 jinv[3][3];  // straight-sided
+  Lanes8 weight;
+  const double* table0 = nullptr;  // curved: [3a+j][g] of each element
+  const double* table1 = nullptr;
+};
+
+template <FbarMode kFbar, bool kStraight, class Model>
+HWY_INLINE void update_pair(const Model& model, const ElementUpdateArrays& in, ElementPair pr,
+                            double dt) {
+  constexpr bool kElastic = std::is_same_v<Model, ElasticModel>;
+  const std::size_t e0 = static_cast<std::size_t>(pr.first),
+                    e1 = static_cast<std::size_t>(pr.second);
+  const Tet10& c0 = in.conn[e0];
+  const Tet10& c1 = in.conn[e1];
+  const NaturalGradients& nat = natural_gradients();
+
+  // 1. F = I + sum_a u_a (x) dN_a/dX at the 8 points, u = x - X (the scalar kernel's form:
+  // rounding relative to the displacements, not to the positions)
+  Lanes8 U[10][3];
+  for (int a = 0; a < 10; ++a)
+    for (int i = 0; i < 3; ++i) {
+      const std::size_t n0 = 3 * static_cast<std::size_t>(c0[a]) + i;
+      const std::size_t n1 = 3 * static_cast<std::size_t>(c1[a]) + i;
+      U[a][i] = pair(in.x[n0] - in.X[n0], in.x[n1] - in.X[n1]);
+    }
+  PairGradients grad;
+  grad.weight = load_pair(in.gauss_weight + 4 * e0, in.gauss_weight + 4 * e1);
+  Lanes8 F[3][3];
+  if constexpr (kStraight) {
+    const double* j0 = in.inverse_jacobian + 9 * e0;
+    const double* j1 = in.inverse_jacobian + 9 * e1;
+    for (int k = 0; k < 3; ++k)
+      for (int j = 0; j < 3; ++j) grad.jinv[k][j] = pair(j0[3 * k + j], j1[3 * k + j]);
+    Lanes8 Jc[3][3];  // du/dxi
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k) {
+        Lanes8 s = U[0][i] * load8(nat.d[0][k]);
+        for (int a = 1; a < 10; ++a) s = mul_add(U[a][i], load8(nat.d[a][k]), s);
+        Jc[i][k] = s;
+      }
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        F[i][j] = Jc[i][0] * grad.jinv[0][j] + Jc[i][1] * grad.jinv[1][j] +
+                  Jc[i][2] * grad.jinv[2][j] + Lanes8(i == j ? 1.0 : 0.0);
+  } else {
+    grad.table0 = in.dNdX_lanes + 120 * e0;
+    grad.table1 = in.dNdX_lanes + 120 * e1;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        Lanes8 s = U[0][i] * load_pair(grad.table0 + j * 4, grad.table1 + j * 4);
+        for (int a = 1; a < 10; ++a)
+          s = mul_add(U[a][i],
+                      load_pair(grad.table0 + (3 * a + j) * 4, grad.table1 + (3 * a + j) * 4), s);
+        F[i][j] = s + Lanes8(i == j ? 1.0 : 0.0);
+      }
+  }
+  const Lanes8 J = det3(F);
+  Lanes8 cof[3][3];
+  cofactor3(F, cof);
+  const Lanes8 w = grad.weight;
+
+  // 2. F-bar: the material sees (J0 / J)^(1/3) F
+  Lanes8 J0 = J, vol0(0.0);
+  Lanes8 cof_c[3][3];  // Centroid: cof of the mean F
+  if constexpr (kFbar == FbarMode::VolumeAverage) {
+    vol0 = sum4_broadcast(w);
+    J0 = sum4_broadcast(w * J) / vol0;
+  } else if constexpr (kFbar == FbarMode::Centroid) {
+    Lanes8 Fc[3][3];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) Fc[i][j] = Lanes8(0.25) * sum4_broadcast(F[i][j]);
+    J0 = det3(Fc);
+    cofactor3(Fc, cof_c);
+  }
+  Lanes8 Fm[3][3], Fm_inv_T[3][3];
+  {
+    const Lanes8 scale = kFbar == FbarMode::Off ? Lanes8(1.0) : cbrt_positive(J0 / J);
+    const Lanes8 inv = Lanes8(1.0) / (J * scale);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        Fm[i][j] = kFbar == FbarMode::Off ? F[i][j] : scale * F[i][j];
+        Fm_inv_T[i][j] = cof[i][j] * inv;
+      }
+  }
+
+  // 3. the material
+  GaussPointLanes st;
+  ElementStates& s0 = in.state[e0];
+  ElementStates& s1 = in.state[e1];
+  if constexpr (!kElastic) {
+    for (int c = 0; c < 6; ++c) st.Cp_inv[c] = load_pair(s0.Cp_inv[c], s1.Cp_inv[c]);
+    st.eps_p = load_pair(s0.eps_p, s1.eps_p);
+    st.kappa = load_pair(s0.kappa, s1.kappa);
+  } else {
+    st.eps_p = Lanes8(0.0);
+  }
+  const FiniteStrainLanes r = finite_strain_update(Fm, Fm_inv_T, st, model, dt);
+  if constexpr (!kElastic) {
+    for (int c = 0; c < 6; ++c) store_pair(st.Cp_inv[c], s0.Cp_inv[c], s1.Cp_inv[c]);
+    store_pair(st.eps_p, s0.eps_p, s1.eps_p);
+    store_pair(st.kappa, s0.kappa, s1.kappa);
+  }
+  {
+    const Lanes8 inv_Jm = Lanes8(1.0) / J0;  // J without F-bar
+    double* sig0 = in.stress + 24 * e0;
+    double* sig1 = in.stress + 24 * e1;
+    for (int c = 0; c < 6; ++c) store_pair(r.tau[c] * inv_Jm, sig0 + 4 * c, sig1 + 4 * c);
+  }
+
+  // 4. first Piola-Kirchhoff stress times the weight: P = (w / J) S cof(F) (+ F-bar pressure)
+  Lanes8 S[6];
+  Lanes8 P[3][3];
+  const Lanes8 k = w / J;
+  if constexpr (kFbar == FbarMode::Off) {
+    for (int c = 0; c < 6; ++c) S[c] = r.tau[c];
+  } else {
+    const Lanes8 p = (r.tau[0] + r.tau[1] + r.tau[2]) * Lanes8(1.0 / 3.0);
+    for (int c = 0; c < 3; ++c) S[c] = r.tau[c] - p;
+    for (int c = 3; c < 6; ++c) S[c] = r.tau[c];
+    const Lanes8 pressure_work = sum4_broadcast(w * p);
+    if constexpr (kFbar == FbarMode::VolumeAverage) {
+      // the pressure acts through each point's J: + (pw w / (V J0)) cof = (w / J) (pw J / (V J0))
+      // cof
+      const Lanes8 extra = pressure_work * J / (vol0 * J0);
+      for (int c = 0; c < 3; ++c) S[c] = S[c] + extra;
+    }
+    if constexpr (kFbar == FbarMode::Centroid) {
+      const Lanes8 kc = Lanes8(0.25) * pressure_work / J0;
+      const Lanes8 Sm[3][3] = {{S[0], S[3], S[5]}, {S[3], S[1], S[4]}, {S[5], S[4], S[2]}};
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+          P[i][j] = k * (Sm[i][0] * cof[0][j] + Sm[i][1] * cof[1][j] + Sm[i][2] * cof[2][j]) +
+                    kc * cof_c[i][j];
+    }
+  }
+  if constexpr (kFbar != FbarMode::Centroid) {
+    const Lanes8 Sm[3][3] = {{S[0], S[3], S[5]}, {S[3], S[1], S[4]}, {S[5], S[4], S[2]}};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        P[i][j] = k * (Sm[i][0] * cof[0][j] + Sm[i][1] * cof[1][j] + Sm[i][2] * cof[2][j]);
+  }
+
+  // 5. f_a = sum_g P_g dN_a/dX|_g: per element, the sum of its 4 lanes
+  double* f0 = in.force + 30 * e0;
+  double* f1 = in.force + 30 * e1;
+  const bool single = e0 == e1;
+  if constexpr (kStraight) {
+    Lanes8 Q[3][3];  // P J0^-T: f_a,i = sum_g sum_k Q_ik dN_a/dxi_k
+    for (int i = 0; i < 3; ++i)
+      for (int kk = 0; kk < 3; ++kk)
+        Q[i][kk] =
+            P[i][0] * grad.jinv[kk][0] + P[i][1] * grad.jinv[kk][1] + P[i][2] * grad.jinv[kk][2];
+    for (int a = 0; a < 10; ++a) {
+      const Lanes8 n0 = load8(nat.d[a][0]), n1 = load8(nat.d[a][1]), n2 = load8(nat.d[a][2]);
+      for (int i = 0; i < 3; ++i) {
+        const PairOf s = sum4(mul_add(Q[i][0], n0, mul_add(Q[i][1], n1, Q[i][2] * n2)));
+        f0[3 * a + i] = s.first;
+        if (!single) f1[3 * a + i] = s.second;
+      }
+    }
+  } else {
+    for (int a = 0; a < 10; ++a) {
+      Lanes8 d[3];
+      for (int j = 0; j < 3; ++j)
+        d[j] = load_pair(grad.table0 + (3 * a + j) * 4, grad.table1 + (3 * a + j) * 4);
+      for (int i = 0; i < 3; ++i) {
+        const PairOf s = sum4(mul_add(P[i][0], d[0], mul_add(P[i][1], d[1], P[i][2] * d[2])));
+        f0[3 * a + i] = s.first;
+        if (!single) f1[3 * a + i] = s.second;
+      }
+    }
+  }
+
+  // 6. the elements' sums
+  const PairOf energy = sum4(w * r.energy);
+  const PairOf dissipation = sum4(w * r.dissipation);
+  PairOf min_J = min4(J);
+  if constexpr (kFbar == FbarMode::Centroid) {
+    const PairOf j0 = min4(J0);
+    min_J = {std::fmin(min_J.first, j0.first), std::fmin(min_J.second, j0.second)};
+  }
+  const PairOf eps = max4(st.eps_p);
+  in.result[e0] = {energy.first, dissipation.first, min_J.first, eps.first};
+  if (!single) in.result[e1] = {energy.second, dissipation.second, min_J.second, eps.second};
+}
+
+template <FbarMode kFbar, bool kStraight, class Model>
+HWY_NOINLINE void update_pairs(const Model& model, const ElementUpdateArrays& in,
+                               const ElementPair* pairs, std::size_t count, double dt) {
+  for (std::size_t p = 0; p < count; ++p) update_pair<kFbar, kStraight>(model, in, pairs[p], dt);
+}
+
+}  // namespace element_pairs_detail
+
+// Updates `count` pairs of elements with one material, F-bar mode kFbar and gradient kind.
+template <FbarMode kFbar, bool kStraight>
+HWY_INLINE void update_pairs_of_any_model(const MaterialKernel& material,
+                                          const ElementUpdateArrays& in, const ElementPair* pairs,
+                                          std::size_t count, double dt) {
+  std::visit(
+      [&](const auto& model) {
+        using Model = std::decay_t<decltype(model)>;
+        if constexpr (has_lanes_return<Model>)
+          element_pairs_detail::update_pairs<kFbar, kStraight>(model, in, pairs, count, dt);
+      },
+      material);
+}
+
+}  // namespace femdem::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#endif  // FEMDEM_ELEMENT_PAIRS_INL_H_

@@ -1,0 +1,130 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The element pass and the whole step, SIMD update against the scalar reference kernel, in one
+// run (Google Benchmark). Reports ns per element update (`ns_per_element`, thread CPU time of
+// the process divided by the elements and passes: immune to a loaded machine's descheduling)
+// and element updates per second (wall clock):
+//   Pass/<model>/<elements>/<threads>/<kernel>   the elements only (forces, stresses, state)
+//   Step/<model>/<elements>/<threads>/<kernel>   one whole explicit step (Simulation::step)
+// model: 0 elastic, 1 von Mises (linear hardening), 2 von Mises + F-bar (volume average);
+// kernel: 0 SIMD, 1 scalar. The block is stretched and sheared so that plastic points yield.
+// Run: build/tools/bench/bench_element_pass --benchmark_counters_tabular=true
+//      [--benchmark_filter=Pass/1/100000]
+#include <benchmark/benchmark.h>
+#include <omp.h>
+
+#include <cmath>
+#include <ctime>
+
+#include "engine/element_pass.hpp"
+#include "engine/simulation.hpp"
+#include "io/mesh/mesh_generators.hpp"
+
+using namespace femdem;
+
+namespace {
+
+ModelSpec block(int model, std::int64_t elements) {
+  ModelSpec s;
+  s.simulation.end_time = 1.0;
+  MaterialParams mat;
+  mat.name = "steel";
+  mat.density = 7850.0;
+  mat.youngs_modulus = 200e9;
+  mat.poisson_ratio = 0.3;
+  if (model > 0) {
+    VonMisesParams v;
+    v.yield_stress = 250e6;
+    v.hardening_modulus = 1e9;
+    mat.model = v;
+  }
+  s.materials.push_back(mat);
+  BodySpec b;
+  b.name = "block";
+  b.material = 0;
+  b.mesh = generate_box(Vec3(1.0, 1.0, 1.0), std::cbrt(6.0 / static_cast<double>(elements)));
+  b.velocity = Vec3(1.0, 2.0, 3.0);
+  if (model == 2) b.fbar = FbarMode::VolumeAverage;
+  s.bodies.push_back(b);
+  return s;
+}
+
+// A deformation beyond yield (0.125 % here) in most points: stretch, shear and a ripple.
+void deform(Model& m) {
+  for (std::int32_t n = 0; n < m.node_count; ++n) {
+    const double X = m.X[3 * n], Y = m.X[3 * n + 1], Z = m.X[3 * n + 2];
+    m.x[3 * n] = X * 1.004 + 0.002 * Y + 1e-3 * std::sin(20.0 * Z);
+    m.x[3 * n + 1] = Y * 0.998 + 0.001 * Z;
+    m.x[3 * n + 2] = Z * 0.999 + 1e-3 * std::sin(17.0 * X);
+  }
+}
+
+double process_cpu_seconds() {
+  timespec t;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+void report(benchmark::State& state, std::int64_t elements, double cpu_s) {
+  const double updates = static_cast<double>(elements) * static_cast<double>(state.iterations());
+  state.counters["ns_per_element"] = 1e9 * cpu_s / updates / static_cast<double>(state.range(2));
+  state.counters["element_updates_per_s"] = benchmark::Counter(
+      static_cast<double>(elements), benchmark::Counter::kIsIterationInvariantRate);
+  state.SetLabel(state.range(3) == 0 ? "simd " + element_update_target() : "scalar");
+}
+
+void Pass(benchmark::State& state) {
+  omp_set_num_threads(static_cast<int>(state.range(2)));
+  Model m = build_model(block(static_cast<int>(state.range(0)), state.range(1)));
+  deform(m);
+  const std::vector<MaterialKernel> kernels = {compile_material(m.materials[0])};
+  ElementPass pass(m, kernels);
+  pass.choose(state.range(3) == 0 ? ElementKernelChoice::simd : ElementKernelChoice::scalar);
+  std::vector<double> force(30 * static_cast<std::size_t>(m.element_count));
+  std::vector<ElementResult> results(m.element_count);
+  const std::vector<ElementStates> fresh = m.states;
+  pass.update(m, kernels, 1e-7, nullptr, nullptr, force, results);  // warm up
+  double cpu = 0.0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    m.states = fresh;  // every pass yields the same points again
+    state.ResumeTiming();
+    const double c0 = process_cpu_seconds();
+    pass.update(m, kernels, 1e-7, nullptr, nullptr, force, results);
+    cpu += process_cpu_seconds() - c0;
+    benchmark::DoNotOptimize(force.data());
+  }
+  report(state, m.element_count, cpu);
+}
+
+void Step(benchmark::State& state) {
+  omp_set_num_threads(static_cast<int>(state.range(2)));
+  Model m = build_model(block(static_cast<int>(state.range(0)), state.range(1)));
+  Simulation sim(std::move(m));
+  sim.choose_element_kernel(state.range(3) == 0 ? ElementKernelChoice::simd
+                                                : ElementKernelChoice::scalar);
+  sim.step();
+  double cpu = 0.0;
+  for (auto _ : state) {
+    const double c0 = process_cpu_seconds();
+    sim.step();
+    cpu += process_cpu_seconds() - c0;
+  }
+  report(state, sim.model().element_count, cpu);
+}
+
+// 10^4 and 10^5 elements for every model, 10^6 for elastic and von Mises.
+void arguments(benchmark::internal::Benchmark* b) {
+  b->ArgNames({"model", "elements", "threads", "kernel"});
+  for (std::int64_t n : {10000, 100000, 1000000})
+    for (int model : {0, 1, 2})
+      for (int threads : {1, 2})
+        for (int kernel : {0, 1})
+          if (n < 1000000 || model < 2) b->Args({model, n, threads, kernel});
+}
+
+}  // namespace
+
+BENCHMARK(Pass)->Apply(arguments)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(Step)->Apply(arguments)->UseRealTime()->Unit(benchmark::kMillisecond);
+
+BENCHMARK_MAIN();
