@@ -8,6 +8,7 @@
 
 #include "engine/element_kernel.hpp"
 #include "engine/errors.hpp"
+#include "engine/ordered_sum.hpp"
 #include "engine/parallel_threshold.hpp"
 #include "materials/symmetric_eigen3.hpp"
 
@@ -142,8 +143,8 @@ void Simulation::compute_forces(double step_dt) {
       // l: the element's length across its thinnest direction (corner altitude; TET10 has two
       // nodes along it)
       elem_viscous_power_[e] = tet10_bulk_viscosity(
-          xe, ve, m.dNdX.data() + 120 * es, m.gauss_weight.data() + 4 * es, cm.density, cd,
-          0.5 * h, m.settings.bulk_viscosity_linear, m.settings.bulk_viscosity_quadratic,
+          xe, ve, m.dNdX.data() + 120 * es, m.gauss_weight.data() + 4 * es, cm.density, cd, 0.5 * h,
+          m.settings.bulk_viscosity_linear, m.settings.bulk_viscosity_quadratic,
           elem_force_.data() + 30 * es, cd);
     }
     elem_dt_[e] = (r.min_J > 0.0 && h > 0.0) ? 2.0 * h / (m.frequency_factor[e] * cd) : -1.0;
@@ -189,28 +190,29 @@ void Simulation::compute_forces(double step_dt) {
     for (int k = 0; k < 3; ++k) m.f_int[3 * n + k] = f[k];
   }
 
-  // the run must stop at the first inverted element (lowest index: deterministic)
-  double internal = 0.0;
-  for (std::int32_t e = 0; e < ne; ++e) {
-    if (elem_energy_[e] == -HUGE_VAL || !(elem_dt_[e] > 0.0)) {
-      const Body& b = m.bodies[m.element_body[e]];
-      std::ostringstream msg;
-      msg << "element " << (e - b.first_element) << " of body '" << b.name
-          << "' inverted (det F <= 0) at t = " << time_ << " s, step " << steps_ << ". "
-          << advice();
-      throw InstabilityError(msg.str());
-    }
-    internal += elem_energy_[e];
+  // the run must stop at the first inverted element (lowest index: min is exact, so the same
+  // element whatever the threads)
+  std::int32_t first_bad = ne;
+#pragma omp parallel for schedule(static) reduction(min : first_bad) if (ne > kParallelMinElements)
+  for (std::int32_t e = 0; e < ne; ++e)
+    if (elem_energy_[e] == -HUGE_VAL || !(elem_dt_[e] > 0.0)) first_bad = std::min(first_bad, e);
+  if (first_bad < ne) {
+    const Body& b = m.bodies[m.element_body[first_bad]];
+    std::ostringstream msg;
+    msg << "element " << (first_bad - b.first_element) << " of body '" << b.name
+        << "' inverted (det F <= 0) at t = " << time_ << " s, step " << steps_ << ". " << advice();
+    throw InstabilityError(msg.str());
   }
-  internal_energy_ = internal;
-  double dissipated = 0.0;
-  for (std::int32_t e = 0; e < ne; ++e) dissipated += elem_dissipation_[e];
-  plastic_dissipation_ += dissipated;
-  if (bulk_viscosity) {
-    double power = 0.0;
-    for (std::int32_t e = 0; e < ne; ++e) power += elem_viscous_power_[e];
-    viscous_dissipation_ += power * step_dt;
-  }
+  // sums in fixed chunks (engine/ordered_sum.hpp): in parallel, the same bits with any threads
+  internal_energy_ = ordered_sum(
+      ne, [&](std::int64_t e) { return elem_energy_[e]; }, sum_scratch_);
+  plastic_dissipation_ += ordered_sum(
+      ne, [&](std::int64_t e) { return elem_dissipation_[e]; }, sum_scratch_);
+  if (bulk_viscosity)
+    viscous_dissipation_ +=
+        ordered_sum(
+            ne, [&](std::int64_t e) { return elem_viscous_power_[e]; }, sum_scratch_) *
+        step_dt;
 
   // 3. contact, in a fixed order: bodies on walls (engine/wall_contact.cpp), then bodies on
   // each other (engine/body_contact.cpp), each adding to f_contact and to the step's sums
@@ -352,11 +354,15 @@ void Simulation::set_time_step() {
   const Model& m = model_;
   if (!elem_mass_scale_.empty())
     scale_masses(m.settings.mass_scaling_time_step / m.settings.time_step_safety);
+  // (min is exact: the same bits whatever the threads)
   double dt_el = HUGE_VAL;
+  const auto ne = static_cast<std::int64_t>(elem_dt_.size());
   if (elem_mass_scale_.empty()) {
-    for (double d : elem_dt_) dt_el = std::min(dt_el, d);
+#pragma omp parallel for schedule(static) reduction(min : dt_el) if (ne > kParallelMinElements)
+    for (std::int64_t e = 0; e < ne; ++e) dt_el = std::min(dt_el, elem_dt_[e]);
   } else {
-    for (std::size_t e = 0; e < elem_dt_.size(); ++e)
+#pragma omp parallel for schedule(static) reduction(min : dt_el) if (ne > kParallelMinElements)
+    for (std::int64_t e = 0; e < ne; ++e)
       dt_el = std::min(dt_el, elem_dt_[e] * std::sqrt(elem_mass_scale_[e]));
   }
   double dt = dt_el;
@@ -395,8 +401,14 @@ void Simulation::step(double dt_limit) {
     }
   }
   if (g.squaredNorm() > 0.0) {
-    for (std::int32_t n = 0; n < nn; ++n)
-      for (int k = 0; k < 3; ++k) gravity_work += m.mass[n] * g[k] * dt * m.v[3 * n + k];
+    gravity_work = ordered_sum(
+        nn,
+        [&](std::int64_t n) {
+          double w = 0.0;
+          for (int k = 0; k < 3; ++k) w += m.mass[n] * g[k] * dt * m.v[3 * n + k];
+          return w;
+        },
+        sum_scratch_);
   }
   for (auto& w : m.walls) {
     if (w.force_driven()) {

@@ -121,7 +121,7 @@ class Simulation {
   std::vector<MaterialKernel> kernels_;  // compiled_[i].kernel, as the element pass takes them
   ElementPass element_pass_;
   std::vector<ElementResult> elem_result_;  // per element, this step
-  std::vector<double> elem_dissipation_;  // per element, this step
+  std::vector<double> elem_dissipation_;    // per element, this step
   double plastic_dissipation_ = 0.0;
   double contact_dissipation_ = 0.0;
   double viscous_dissipation_ = 0.0;
@@ -136,6 +136,7 @@ class Simulation {
   ImpactDampingScratch impact_scratch_;
   std::vector<double> elem_viscous_power_;    // per element, this step
   mutable std::vector<double> elem_scratch_;  // per element, for bodies_volume
+  mutable std::vector<double> sum_scratch_;   // chunk sums of ordered_sum
   // nodal F-bar (FbarMode::Nodal) work arrays
   bool has_nodal_fbar_ = false;
   std::vector<double> elem_volume_, elem_pressure_weight_, node_J_, node_Q_, node_ref_volume_;

@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "engine/element_kernel.hpp"
+#include "engine/ordered_sum.hpp"
 #include "engine/parallel_threshold.hpp"
 #include "materials/symmetric_eigen3.hpp"
 
@@ -39,12 +40,13 @@ double Simulation::bodies_volume(std::span<const std::uint8_t> body_mask) const 
 
 Energies Simulation::energies() const {
   Energies e;
-  double ke = 0.0;
-  for (std::int32_t n = 0; n < model_.node_count; ++n) {
-    const double* v = model_.v.data() + 3 * static_cast<std::size_t>(n);
-    ke += 0.5 * model_.mass[n] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-  }
-  e.kinetic = ke;
+  e.kinetic = ordered_sum(
+      model_.node_count,
+      [&](std::int64_t n) {
+        const double* v = model_.v.data() + 3 * n;
+        return 0.5 * model_.mass[n] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+      },
+      sum_scratch_);
   e.internal = internal_energy_;
   e.plastic_dissipation = plastic_dissipation_;
   e.contact_dissipation = contact_dissipation_;

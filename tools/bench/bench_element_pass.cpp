@@ -5,8 +5,11 @@
 // and element updates per second (wall clock):
 //   Pass/<model>/<elements>/<threads>/<kernel>   the elements only (forces, stresses, state)
 //   Step/<model>/<elements>/<threads>/<kernel>   one whole explicit step (Simulation::step)
-// model: 0 elastic, 1 von Mises (linear hardening), 2 von Mises + F-bar (volume average);
-// kernel: 0 SIMD, 1 scalar. The block is stretched and sheared so that plastic points yield.
+// model: 0 elastic, 1 von Mises (linear hardening), 2 von Mises + F-bar (volume average),
+// 3 Drucker-Prager, 4 Mohr-Coulomb, 5 piece-wise Drucker-Prager (c 15 MPa, phi 30, psi 15;
+// the thesis' five concrete pieces); kernel: 0 SIMD, 1 scalar, 2 SIMD reading the 120-number
+// gradient table as for curved elements (what recomputing the gradients from J0^-1 saves).
+// The block is stretched and sheared so that plastic points yield.
 // Run: build/tools/bench/bench_element_pass --benchmark_counters_tabular=true
 //      [--benchmark_filter=Pass/1/100000]
 #include <benchmark/benchmark.h>
@@ -31,11 +34,30 @@ ModelSpec block(int model, std::int64_t elements) {
   mat.density = 7850.0;
   mat.youngs_modulus = 200e9;
   mat.poisson_ratio = 0.3;
-  if (model > 0) {
+  if (model == 1 || model == 2) {
     VonMisesParams v;
     v.yield_stress = 250e6;
     v.hardening_modulus = 1e9;
     mat.model = v;
+  }
+  FrictionalParams f;
+  f.cohesion = 15e6;
+  f.friction_angle = 30.0;
+  f.dilatancy_angle = 15.0;
+  if (model == 3) {
+    DruckerPragerParams p;
+    static_cast<FrictionalParams&>(p) = f;
+    mat.model = p;
+  }
+  if (model == 4) {
+    MohrCoulombParams p;
+    static_cast<FrictionalParams&>(p) = f;
+    mat.model = p;
+  }
+  if (model == 5) {
+    PiecewiseDruckerPragerParams p;
+    p.pieces = {{0.42, 8e6}, {0.30, 14e6}, {0.14, 30e6}, {0.07, 40.5e6}, {0.035, 49.25e6}};
+    mat.model = p;
   }
   s.materials.push_back(mat);
   BodySpec b;
@@ -69,16 +91,19 @@ void report(benchmark::State& state, std::int64_t elements, double cpu_s) {
   state.counters["ns_per_element"] = 1e9 * cpu_s / updates / static_cast<double>(state.range(2));
   state.counters["element_updates_per_s"] = benchmark::Counter(
       static_cast<double>(elements), benchmark::Counter::kIsIterationInvariantRate);
-  state.SetLabel(state.range(3) == 0 ? "simd " + element_update_target() : "scalar");
+  const char* kinds[] = {"simd ", "scalar", "simd table "};
+  state.SetLabel(std::string(kinds[state.range(3)]) +
+                 (state.range(3) == 1 ? "" : element_update_target()));
 }
 
 void Pass(benchmark::State& state) {
   omp_set_num_threads(static_cast<int>(state.range(2)));
   Model m = build_model(block(static_cast<int>(state.range(0)), state.range(1)));
   deform(m);
+  if (state.range(3) == 2) std::fill(m.straight_sided.begin(), m.straight_sided.end(), 0);
   const std::vector<MaterialKernel> kernels = {compile_material(m.materials[0])};
   ElementPass pass(m, kernels);
-  pass.choose(state.range(3) == 0 ? ElementKernelChoice::simd : ElementKernelChoice::scalar);
+  pass.choose(state.range(3) == 1 ? ElementKernelChoice::scalar : ElementKernelChoice::simd);
   std::vector<double> force(30 * static_cast<std::size_t>(m.element_count));
   std::vector<ElementResult> results(m.element_count);
   const std::vector<ElementStates> fresh = m.states;
@@ -99,9 +124,10 @@ void Pass(benchmark::State& state) {
 void Step(benchmark::State& state) {
   omp_set_num_threads(static_cast<int>(state.range(2)));
   Model m = build_model(block(static_cast<int>(state.range(0)), state.range(1)));
+  if (state.range(3) == 2) std::fill(m.straight_sided.begin(), m.straight_sided.end(), 0);
   Simulation sim(std::move(m));
-  sim.choose_element_kernel(state.range(3) == 0 ? ElementKernelChoice::simd
-                                                : ElementKernelChoice::scalar);
+  sim.choose_element_kernel(state.range(3) == 1 ? ElementKernelChoice::scalar
+                                                : ElementKernelChoice::simd);
   sim.step();
   double cpu = 0.0;
   for (auto _ : state) {
@@ -112,14 +138,18 @@ void Step(benchmark::State& state) {
   report(state, sim.model().element_count, cpu);
 }
 
-// 10^4 and 10^5 elements for every model, 10^6 for elastic and von Mises.
+// Elastic and von Mises (with and without F-bar) at 10^4, 10^5 and 10^6 elements, the
+// pressure-dependent models at 10^5; the table gradients at 10^5.
 void arguments(benchmark::internal::Benchmark* b) {
   b->ArgNames({"model", "elements", "threads", "kernel"});
   for (std::int64_t n : {10000, 100000, 1000000})
-    for (int model : {0, 1, 2})
+    for (int model : {0, 1, 2, 3, 4, 5})
       for (int threads : {1, 2})
-        for (int kernel : {0, 1})
-          if (n < 1000000 || model < 2) b->Args({model, n, threads, kernel});
+        for (int kernel : {0, 1, 2}) {
+          if (model > 2 && n != 100000) continue;
+          if (kernel == 2 && (n != 100000 || model > 2)) continue;
+          b->Args({model, n, threads, kernel});
+        }
 }
 
 }  // namespace
