@@ -102,6 +102,13 @@ void say_model(RunLog& log, const SceneFile& scene, const Simulation& sim, int t
                 static_cast<int>(m.bodies.size()), m.node_count, m.element_count,
                 static_cast<int>(m.walls.size()), threads, threads == 1 ? "" : "s");
   log.say(buf);
+  // which element kernel: what a user needs to read the run's element-update rate
+  const std::int64_t simd = sim.element_pass().simd_elements();
+  std::snprintf(
+      buf, sizeof buf, "element update: SIMD (%s) for %lld of %d elements%s",
+      element_update_target().c_str(), static_cast<long long>(simd), m.element_count,
+      simd < m.element_count ? ", the scalar kernel for the rest (nodal or sub_tet F-bar)" : "");
+  log.say(buf);
   std::snprintf(buf, sizeof buf,
                 "stable time step %.4g s, step %.4g s; end time %.4g s (about %.0f steps)",
                 sim.stable_dt(), sim.dt(), set.end_time, set.end_time / sim.dt());
