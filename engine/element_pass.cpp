@@ -16,8 +16,12 @@ constexpr std::size_t kPairsPerChunk = 32;
 ElementPass::ElementPass(const Model& m, const std::vector<MaterialKernel>& kernels) {
   const std::int32_t ne = m.element_count;
   bool curved_taken = false;
+  // whether the SIMD update takes a (material, F-bar mode): asked once per pair, not per element
+  std::vector<signed char> supported(kernels.size() * 5, -1);
   auto takes = [&](std::int32_t e) {
-    return element_update_supports(kernels[m.element_material[e]], m.element_fbar[e]);
+    signed char& s = supported[5 * m.element_material[e] + static_cast<int>(m.element_fbar[e])];
+    if (s < 0) s = element_update_supports(kernels[m.element_material[e]], m.element_fbar[e]);
+    return s == 1;
   };
   auto same_kind = [&](std::int32_t a, std::int32_t b) {
     return m.element_body[a] == m.element_body[b] && m.element_fbar[a] == m.element_fbar[b] &&
