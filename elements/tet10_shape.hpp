@@ -67,6 +67,32 @@ inline double subtet_volume(const double* x) {
   return v6 / 6.0;
 }
 
+// fe += s * 6 d(subtet_volume)/dx: each sub-tetrahedron's volume gradient on its 4 nodes (the
+// sub-tet F-bar's pressure forces; s carries the 1/6).
+inline void add_subtet_volume_gradient(const double* x, double s, double* fe) {
+  for (const auto& t : kSubTets) {
+    const double* a = x + 3 * t[0];
+    const double* b = x + 3 * t[1];
+    const double* c = x + 3 * t[2];
+    const double* d = x + 3 * t[3];
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const double w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+    const double gb[3] = {v[1] * w[2] - v[2] * w[1], v[2] * w[0] - v[0] * w[2],
+                          v[0] * w[1] - v[1] * w[0]};
+    const double gc[3] = {w[1] * u[2] - w[2] * u[1], w[2] * u[0] - w[0] * u[2],
+                          w[0] * u[1] - w[1] * u[0]};
+    const double gd[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                          u[0] * v[1] - u[1] * v[0]};
+    for (int k = 0; k < 3; ++k) {
+      fe[3 * t[1] + k] += s * gb[k];
+      fe[3 * t[2] + k] += s * gc[k];
+      fe[3 * t[3] + k] += s * gd[k];
+      fe[3 * t[0] + k] -= s * (gb[k] + gc[k] + gd[k]);
+    }
+  }
+}
+
 // HRZ lumping of the consistent mass of a straight-sided TET10: the consistent diagonal is
 // 6/420 m (corner) and 32/420 m (mid-edge); scaled to sum to m this gives m/36 and 4m/27
 // (row-sum lumping would give negative corner masses).

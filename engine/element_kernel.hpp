@@ -29,6 +29,9 @@ struct ElementResult {
   double dissipation = 0.0;  // plastic work increment of this step
   double min_J = 0.0;        // smallest det F over the Gauss points
   double max_eps_p = 0.0;    // largest equivalent plastic strain over the Gauss points
+  // smallest altitude of the corner tetrahedron at the current positions (the stable step's
+  // length, corner_tet_min_altitude); set by the element pass, not by tet10_internal_forces
+  double min_altitude = 0.0;
 };
 
 namespace detail {
@@ -86,13 +89,10 @@ inline void add_force(const double S6[6], const double cof[3][3], double scale, 
 // displacements u = x - X, whose rounding error is relative to the displacement rather than to
 // the position (a body far from the origin, or a small strain, keeps its digits).
 template <class Material>
-inline ElementResult tet10_internal_forces(const double* xe, const double* dNdX, const double* w,
-                                           const Material& material, FbarMode fbar,
-                                           GaussPointState* state, double dt, double* fe,
-                                           double* sigma, const double* corner_J = nullptr,
-                                           double* pressure_weight = nullptr,
-                                           double subtet_volume0 = 0.0,
-                                           const double* Xe = nullptr) {
+inline ElementResult tet10_internal_forces(
+    const double* xe, const double* dNdX, const double* w, const Material& material, FbarMode fbar,
+    GaussPointState* state, double dt, double* fe, double* sigma, const double* corner_J = nullptr,
+    double* pressure_weight = nullptr, double subtet_volume0 = 0.0, const double* Xe = nullptr) {
   ElementResult res;
   res.min_J = HUGE_VAL;
   for (int i = 0; i < 30; ++i) fe[i] = 0.0;
@@ -184,29 +184,7 @@ inline ElementResult tet10_internal_forces(const double* xe, const double* dNdX,
     }
   } else if (fbar == FbarMode::SubTet) {
     // dJ0 = d(sum_s V_s) / V0: each sub-tet's volume gradient on its 4 nodes
-    const double s = pressure_work / (J0 * subtet_volume0 * 6.0);
-    for (const auto& t : tet10::kSubTets) {
-      const double* a = xe + 3 * t[0];
-      const double* b = xe + 3 * t[1];
-      const double* c = xe + 3 * t[2];
-      const double* d = xe + 3 * t[3];
-      double gb[3], gc[3], gd[3];
-      const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-      const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-      const double w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
-      gb[0] = v[1] * w[2] - v[2] * w[1], gb[1] = v[2] * w[0] - v[0] * w[2],
-      gb[2] = v[0] * w[1] - v[1] * w[0];
-      gc[0] = w[1] * u[2] - w[2] * u[1], gc[1] = w[2] * u[0] - w[0] * u[2],
-      gc[2] = w[0] * u[1] - w[1] * u[0];
-      gd[0] = u[1] * v[2] - u[2] * v[1], gd[1] = u[2] * v[0] - u[0] * v[2],
-      gd[2] = u[0] * v[1] - u[1] * v[0];
-      for (int k = 0; k < 3; ++k) {
-        fe[3 * t[1] + k] += s * gb[k];
-        fe[3 * t[2] + k] += s * gc[k];
-        fe[3 * t[3] + k] += s * gd[k];
-        fe[3 * t[0] + k] -= s * (gb[k] + gc[k] + gd[k]);
-      }
-    }
+    tet10::add_subtet_volume_gradient(xe, pressure_work / (J0 * subtet_volume0 * 6.0), fe);
   } else if (fbar == FbarMode::Centroid) {
     // J0 = det(Fc), Fc = sum_h F_h / 4: dJ0/J0 = Fc^-T : sum_h dF_h / 4
     double cof[3][3];

@@ -95,6 +95,7 @@ void ElementPass::scalar_element(Model& m, const MaterialKernel& kernel, std::in
                                      Xe);
       },
       kernel);
+  result.min_altitude = corner_tet_min_altitude(xe);
   for (int g = 0; g < 4; ++g) {
     m.states[e].set(g, st[g]);
     for (int k = 0; k < 6; ++k) m.stress[24 * es + 4 * k + g] = sigma[6 * g + k];
@@ -119,6 +120,9 @@ void ElementPass::update(Model& m, const std::vector<MaterialKernel>& kernels, d
   arrays.inverse_jacobian = m.inverse_jacobian.data();
   arrays.gauss_weight = m.gauss_weight.data();
   arrays.dNdX_lanes = dNdX_lanes_.data();
+  arrays.subtet_volume0 = m.subtet_volume0.data();
+  arrays.node_J = node_J;
+  arrays.pressure_weight = pressure_weight;
   arrays.state = m.states.data();
   arrays.stress = m.stress.data();
   arrays.force = force.data();

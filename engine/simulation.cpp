@@ -121,25 +121,26 @@ void Simulation::compute_forces(double step_dt) {
   element_pass_.update(m, kernels_, step_dt, has_nodal_fbar_ ? node_J_.data() : nullptr,
                        has_nodal_fbar_ ? elem_pressure_weight_.data() : nullptr, elem_force_,
                        elem_result_);
-  // 1a. per element: its energies, bulk viscosity and stable step
-#pragma omp parallel for schedule(static) if (ne > kParallelMinElements)
+  // 1a. per element: its energies, bulk viscosity and stable step. The run must stop at the
+  // first inverted element (lowest index: min is exact, so the same element whatever the threads)
+  std::int32_t first_bad = ne;
+#pragma omp parallel for schedule(static) reduction(min : first_bad) if (ne > kParallelMinElements)
   for (std::int32_t e = 0; e < ne; ++e) {
-    const Tet10& c = m.conn[e];
     const ElementResult& r = elem_result_[e];
     const CompiledMaterial& cm = compiled_[m.element_material[e]];
     elem_energy_[e] = r.min_J > 0.0 ? r.energy : -HUGE_VAL;
     elem_dissipation_[e] = r.dissipation;
     double cd = cm.wave_speed;
-    double xe[30];
-    const int nodes = bulk_viscosity ? 10 : 4;  // the corner altitude needs the corners only
-    for (int a = 0; a < nodes; ++a)
-      for (int k = 0; k < 3; ++k) xe[3 * a + k] = x[3 * c[a] + k];
-    const double h = corner_tet_min_altitude(xe);
+    const double h = r.min_altitude;
     if (bulk_viscosity && r.min_J > 0.0) {
       const std::size_t es = static_cast<std::size_t>(e);
-      double ve[30];
+      const Tet10& c = m.conn[e];
+      double xe[30], ve[30];
       for (int a = 0; a < 10; ++a)
-        for (int k = 0; k < 3; ++k) ve[3 * a + k] = m.v[3 * c[a] + k];
+        for (int k = 0; k < 3; ++k) {
+          xe[3 * a + k] = x[3 * c[a] + k];
+          ve[3 * a + k] = m.v[3 * c[a] + k];
+        }
       // l: the element's length across its thinnest direction (corner altitude; TET10 has two
       // nodes along it)
       elem_viscous_power_[e] = tet10_bulk_viscosity(
@@ -148,6 +149,7 @@ void Simulation::compute_forces(double step_dt) {
           elem_force_.data() + 30 * es, cd);
     }
     elem_dt_[e] = (r.min_J > 0.0 && h > 0.0) ? 2.0 * h / (m.frequency_factor[e] * cd) : -1.0;
+    if (elem_energy_[e] == -HUGE_VAL || !(elem_dt_[e] > 0.0)) first_bad = std::min(first_bad, e);
   }
 
   // 1b. nodal F-bar pressure: gather each corner's dW/dJbar, then every element adds
@@ -190,12 +192,6 @@ void Simulation::compute_forces(double step_dt) {
     for (int k = 0; k < 3; ++k) m.f_int[3 * n + k] = f[k];
   }
 
-  // the run must stop at the first inverted element (lowest index: min is exact, so the same
-  // element whatever the threads)
-  std::int32_t first_bad = ne;
-#pragma omp parallel for schedule(static) reduction(min : first_bad) if (ne > kParallelMinElements)
-  for (std::int32_t e = 0; e < ne; ++e)
-    if (elem_energy_[e] == -HUGE_VAL || !(elem_dt_[e] > 0.0)) first_bad = std::min(first_bad, e);
   if (first_bad < ne) {
     const Body& b = m.bodies[m.element_body[first_bad]];
     std::ostringstream msg;

@@ -87,6 +87,15 @@ HWY_INLINE void update_pair(const Model& model, const ElementUpdateArrays& in, E
       const std::size_t n1 = 3 * static_cast<std::size_t>(c1[a]) + i;
       U[a][i] = pair(in.x[n0] - in.X[n0], in.x[n1] - in.X[n1]);
     }
+  // the current positions the per-element geometry needs: the corners (the stable step's
+  // altitude) or all 10 nodes (the sub-tet volume)
+  constexpr int kPositions = kFbar == FbarMode::SubTet ? 10 : 4;
+  double xe0[3 * kPositions], xe1[3 * kPositions];
+  for (int a = 0; a < kPositions; ++a)
+    for (int i = 0; i < 3; ++i) {
+      xe0[3 * a + i] = in.x[3 * static_cast<std::size_t>(c0[a]) + i];
+      xe1[3 * a + i] = in.x[3 * static_cast<std::size_t>(c1[a]) + i];
+    }
   PairGradients grad;
   grad.weight = load_pair(in.gauss_weight + 4 * e0, in.gauss_weight + 4 * e1);
   Lanes8 F[3][3];
@@ -126,7 +135,26 @@ HWY_INLINE void update_pair(const Model& model, const ElementUpdateArrays& in, E
   // 2. F-bar: the material sees (J0 / J)^(1/3) F
   Lanes8 J0 = J, vol0(0.0);
   Lanes8 cof_c[3][3];  // Centroid: cof of the mean F
-  if constexpr (kFbar == FbarMode::VolumeAverage) {
+  double subtet_V0[2] = {1.0, 1.0}, subtet_J0[2] = {1.0, 1.0};
+  if constexpr (kFbar == FbarMode::SubTet) {
+    // J0 from the volume of the 8 linear sub-tetrahedra (element_kernel.hpp)
+    subtet_V0[0] = in.subtet_volume0[e0];
+    subtet_V0[1] = in.subtet_volume0[e1];
+    subtet_J0[0] = tet10::subtet_volume(xe0) / subtet_V0[0];
+    subtet_J0[1] = tet10::subtet_volume(xe1) / subtet_V0[1];
+    J0 = pair(subtet_J0[0], subtet_J0[1]);
+  } else if constexpr (kFbar == FbarMode::Nodal) {
+    // J0_g = sum_c L_c(g) Jbar_c from the corner nodes' averaged volume ratios: kGaussA for the
+    // corner the point is nearest, kGaussB for the other three
+    alignas(64) double corner[8];
+    for (int c = 0; c < 4; ++c) {
+      corner[c] = in.node_J[c0[c]];
+      corner[4 + c] = in.node_J[c1[c]];
+    }
+    const Lanes8 cj = load8(corner);
+    J0 = mul_add(Lanes8(tet10::kGaussA - tet10::kGaussB), cj,
+                 Lanes8(tet10::kGaussB) * sum4_broadcast(cj));
+  } else if constexpr (kFbar == FbarMode::VolumeAverage) {
     vol0 = sum4_broadcast(w);
     J0 = sum4_broadcast(w * J) / vol0;
   } else if constexpr (kFbar == FbarMode::Centroid) {
@@ -174,6 +202,7 @@ HWY_INLINE void update_pair(const Model& model, const ElementUpdateArrays& in, E
   // 4. first Piola-Kirchhoff stress times the weight: P = (w / J) S cof(F) (+ F-bar pressure)
   Lanes8 S[6];
   Lanes8 P[3][3];
+  PairOf subtet_pressure_work{0.0, 0.0};  // SubTet: sum_g w_g p_g per element
   const Lanes8 k = w / J;
   if constexpr (kFbar == FbarMode::Off) {
     for (int c = 0; c < 6; ++c) S[c] = r.tau[c];
@@ -181,15 +210,23 @@ HWY_INLINE void update_pair(const Model& model, const ElementUpdateArrays& in, E
     const Lanes8 p = (r.tau[0] + r.tau[1] + r.tau[2]) * Lanes8(1.0 / 3.0);
     for (int c = 0; c < 3; ++c) S[c] = r.tau[c] - p;
     for (int c = 3; c < 6; ++c) S[c] = r.tau[c];
-    const Lanes8 pressure_work = sum4_broadcast(w * p);
+    if constexpr (kFbar == FbarMode::SubTet) subtet_pressure_work = sum4(w * p);
+    if constexpr (kFbar == FbarMode::Nodal) {
+      // the element's share of dW/dJbar_c per corner: sum_g w_g p_g L_c(g) / J0_g
+      const Lanes8 q = w * p / J0;
+      const Lanes8 share = mul_add(Lanes8(tet10::kGaussA - tet10::kGaussB), q,
+                                   Lanes8(tet10::kGaussB) * sum4_broadcast(q));
+      store_pair(share, in.pressure_weight + 4 * e0, in.pressure_weight + 4 * e1);
+    }
     if constexpr (kFbar == FbarMode::VolumeAverage) {
+      const Lanes8 pressure_work = sum4_broadcast(w * p);
       // the pressure acts through each point's J: + (pw w / (V J0)) cof = (w / J) (pw J / (V J0))
       // cof
       const Lanes8 extra = pressure_work * J / (vol0 * J0);
       for (int c = 0; c < 3; ++c) S[c] = S[c] + extra;
     }
     if constexpr (kFbar == FbarMode::Centroid) {
-      const Lanes8 kc = Lanes8(0.25) * pressure_work / J0;
+      const Lanes8 kc = Lanes8(0.25) * sum4_broadcast(w * p) / J0;
       const Lanes8 Sm[3][3] = {{S[0], S[3], S[5]}, {S[3], S[1], S[4]}, {S[5], S[4], S[2]}};
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j)
@@ -235,17 +272,29 @@ HWY_INLINE void update_pair(const Model& model, const ElementUpdateArrays& in, E
     }
   }
 
+  if constexpr (kFbar == FbarMode::SubTet) {
+    // the mean pressure through dJ0 = d(sum_s V_s) / V0 (element_kernel.hpp)
+    tet10::add_subtet_volume_gradient(
+        xe0, subtet_pressure_work.first / (subtet_J0[0] * subtet_V0[0] * 6.0), f0);
+    if (!single)
+      tet10::add_subtet_volume_gradient(
+          xe1, subtet_pressure_work.second / (subtet_J0[1] * subtet_V0[1] * 6.0), f1);
+  }
+
   // 6. the elements' sums
   const PairOf energy = sum4(w * r.energy);
   const PairOf dissipation = sum4(w * r.dissipation);
   PairOf min_J = min4(J);
-  if constexpr (kFbar == FbarMode::Centroid) {
+  if constexpr (kFbar == FbarMode::Centroid || kFbar == FbarMode::SubTet) {
     const PairOf j0 = min4(J0);
     min_J = {std::fmin(min_J.first, j0.first), std::fmin(min_J.second, j0.second)};
   }
   const PairOf eps = max4(st.eps_p);
-  in.result[e0] = {energy.first, dissipation.first, min_J.first, eps.first};
-  if (!single) in.result[e1] = {energy.second, dissipation.second, min_J.second, eps.second};
+  in.result[e0] = {energy.first, dissipation.first, min_J.first, eps.first,
+                   corner_tet_min_altitude(xe0)};
+  if (!single)
+    in.result[e1] = {energy.second, dissipation.second, min_J.second, eps.second,
+                     corner_tet_min_altitude(xe1)};
 }
 
 template <FbarMode kFbar, bool kStraight, class Model>

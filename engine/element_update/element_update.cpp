@@ -33,9 +33,8 @@ namespace femdem {
 
 HWY_EXPORT(HasLanesReturn);
 
-bool element_update_supports(const MaterialKernel& material, FbarMode fbar) {
-  return HWY_DYNAMIC_DISPATCH(HasLanesReturn)(material) &&
-         (fbar == FbarMode::Off || fbar == FbarMode::VolumeAverage || fbar == FbarMode::Centroid);
+bool element_update_supports(const MaterialKernel& material, FbarMode /*fbar*/) {
+  return HWY_DYNAMIC_DISPATCH(HasLanesReturn)(material);  // every F-bar mode
 }
 
 void update_element_pairs(const MaterialKernel& material, FbarMode fbar, bool straight,
@@ -52,8 +51,11 @@ void update_element_pairs(const MaterialKernel& material, FbarMode fbar, bool st
       return (straight ? update_pairs_centroid_straight : update_pairs_centroid_curved)(
           material, arrays, pairs, count, dt);
     case FbarMode::Nodal:
+      return (straight ? update_pairs_nodal_straight : update_pairs_nodal_curved)(material, arrays,
+                                                                                  pairs, count, dt);
     case FbarMode::SubTet:
-      return;  // not here: element_update_supports says so
+      return (straight ? update_pairs_subtet_straight : update_pairs_subtet_curved)(
+          material, arrays, pairs, count, dt);
   }
 }
 

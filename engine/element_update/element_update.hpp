@@ -43,10 +43,13 @@ struct ElementUpdateArrays {
   const double* inverse_jacobian = nullptr;  // straight-sided: J0^-1, 9 per element, row-major
   const double* dNdX_lanes = nullptr;        // curved: dN_a/dX_j at the 4 points, [e][3a+j][g]
   const double* gauss_weight = nullptr;      // w_g det J0, 4 per element
+  const double* subtet_volume0 = nullptr;    // SubTet F-bar: the 8 sub-tets' reference volume
+  const double* node_J = nullptr;            // Nodal F-bar: each node's averaged volume ratio
+  double* pressure_weight = nullptr;         // Nodal F-bar, out: 4 per element (element_kernel)
   ElementStates* state = nullptr;            // history (not touched for elastic materials)
   double* stress = nullptr;                  // out: Cauchy stress, [e][6][4] (xx yy zz xy yz xz)
   double* force = nullptr;                   // out: internal nodal forces, 30 per element
-  ElementResult* result = nullptr;           // out: energy, dissipation, min det F, max eps_p
+  ElementResult* result = nullptr;  // out: energy, dissipation, min det F, max eps_p, altitude
 };
 
 // True when the SIMD update has the material's model and the F-bar mode (the rest go through

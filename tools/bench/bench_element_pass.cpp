@@ -7,15 +7,18 @@
 //   Step/<model>/<elements>/<threads>/<kernel>   one whole explicit step (Simulation::step)
 // model: 0 elastic, 1 von Mises (linear hardening), 2 von Mises + F-bar (volume average),
 // 3 Drucker-Prager, 4 Mohr-Coulomb, 5 piece-wise Drucker-Prager (c 15 MPa, phi 30, psi 15;
-// the thesis' five concrete pieces); kernel: 0 SIMD, 1 scalar, 2 SIMD reading the 120-number
-// gradient table as for curved elements (what recomputing the gradients from J0^-1 saves).
-// The block is stretched and sheared so that plastic points yield.
+// the thesis' five concrete pieces), 6 von Mises + nodal F-bar, 7 von Mises + sub-tet F-bar;
+// kernel: 0 SIMD, 1 scalar, 2 SIMD reading the 120-number gradient table as for curved
+// elements (what recomputing the gradients from J0^-1 saves). The block is stretched and
+// sheared so that plastic points yield. FEMDEM_BENCH_TARGET=EMU128 (or another of
+// element_update_targets()) runs the SIMD update on that instruction set instead of the best.
 // Run: build/tools/bench/bench_element_pass --benchmark_counters_tabular=true
-//      [--benchmark_filter=Pass/1/100000]
+//      [--benchmark_filter='Pass/model:1/elements:100000/']
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <ctime>
 
 #include "engine/element_pass.hpp"
@@ -34,7 +37,7 @@ ModelSpec block(int model, std::int64_t elements) {
   mat.density = 7850.0;
   mat.youngs_modulus = 200e9;
   mat.poisson_ratio = 0.3;
-  if (model == 1 || model == 2) {
+  if (model == 1 || model == 2 || model >= 6) {
     VonMisesParams v;
     v.yield_stress = 250e6;
     v.hardening_modulus = 1e9;
@@ -66,6 +69,8 @@ ModelSpec block(int model, std::int64_t elements) {
   b.mesh = generate_box(Vec3(1.0, 1.0, 1.0), std::cbrt(6.0 / static_cast<double>(elements)));
   b.velocity = Vec3(1.0, 2.0, 3.0);
   if (model == 2) b.fbar = FbarMode::VolumeAverage;
+  if (model == 6) b.fbar = FbarMode::Nodal;
+  if (model == 7) b.fbar = FbarMode::SubTet;
   s.bodies.push_back(b);
   return s;
 }
@@ -86,6 +91,12 @@ double process_cpu_seconds() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
+// The instruction set asked for by FEMDEM_BENCH_TARGET (the best one otherwise).
+void choose_target(benchmark::State& state) {
+  const char* t = std::getenv("FEMDEM_BENCH_TARGET");
+  if (!use_element_update_target(t ? t : "")) state.SkipWithError("unknown FEMDEM_BENCH_TARGET");
+}
+
 void report(benchmark::State& state, std::int64_t elements, double cpu_s) {
   const double updates = static_cast<double>(elements) * static_cast<double>(state.iterations());
   state.counters["ns_per_element"] = 1e9 * cpu_s / updates / static_cast<double>(state.range(2));
@@ -98,6 +109,7 @@ void report(benchmark::State& state, std::int64_t elements, double cpu_s) {
 
 void Pass(benchmark::State& state) {
   omp_set_num_threads(static_cast<int>(state.range(2)));
+  choose_target(state);
   Model m = build_model(block(static_cast<int>(state.range(0)), state.range(1)));
   deform(m);
   if (state.range(3) == 2) std::fill(m.straight_sided.begin(), m.straight_sided.end(), 0);
@@ -106,15 +118,21 @@ void Pass(benchmark::State& state) {
   pass.choose(state.range(3) == 1 ? ElementKernelChoice::scalar : ElementKernelChoice::simd);
   std::vector<double> force(30 * static_cast<std::size_t>(m.element_count));
   std::vector<ElementResult> results(m.element_count);
+  // nodal F-bar's inputs and outputs (the corner volume ratios as at rest)
+  const bool nodal = m.element_fbar[0] == FbarMode::Nodal;
+  std::vector<double> node_J(nodal ? m.node_count : 0, 1.0);
+  std::vector<double> pressure_weight(nodal ? 4 * static_cast<std::size_t>(m.element_count) : 0);
+  const double* J = nodal ? node_J.data() : nullptr;
+  double* q = nodal ? pressure_weight.data() : nullptr;
   const std::vector<ElementStates> fresh = m.states;
-  pass.update(m, kernels, 1e-7, nullptr, nullptr, force, results);  // warm up
+  pass.update(m, kernels, 1e-7, J, q, force, results);  // warm up
   double cpu = 0.0;
   for (auto _ : state) {
     state.PauseTiming();
     m.states = fresh;  // every pass yields the same points again
     state.ResumeTiming();
     const double c0 = process_cpu_seconds();
-    pass.update(m, kernels, 1e-7, nullptr, nullptr, force, results);
+    pass.update(m, kernels, 1e-7, J, q, force, results);
     cpu += process_cpu_seconds() - c0;
     benchmark::DoNotOptimize(force.data());
   }
@@ -123,6 +141,7 @@ void Pass(benchmark::State& state) {
 
 void Step(benchmark::State& state) {
   omp_set_num_threads(static_cast<int>(state.range(2)));
+  choose_target(state);
   Model m = build_model(block(static_cast<int>(state.range(0)), state.range(1)));
   if (state.range(3) == 2) std::fill(m.straight_sided.begin(), m.straight_sided.end(), 0);
   Simulation sim(std::move(m));
@@ -138,15 +157,13 @@ void Step(benchmark::State& state) {
   report(state, sim.model().element_count, cpu);
 }
 
-// Elastic and von Mises (with and without F-bar) at 10^4, 10^5 and 10^6 elements, the
-// pressure-dependent models at 10^5; the table gradients at 10^5.
+// Every model at 10^4, 10^5 and 10^6 elements; the table gradients at 10^5.
 void arguments(benchmark::internal::Benchmark* b) {
   b->ArgNames({"model", "elements", "threads", "kernel"});
   for (std::int64_t n : {10000, 100000, 1000000})
-    for (int model : {0, 1, 2, 3, 4, 5})
+    for (int model : {0, 1, 2, 3, 4, 5, 6, 7})
       for (int threads : {1, 2})
         for (int kernel : {0, 1, 2}) {
-          if (model > 2 && n != 100000) continue;
           if (kernel == 2 && (n != 100000 || model > 2)) continue;
           b->Args({model, n, threads, kernel});
         }

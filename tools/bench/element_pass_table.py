@@ -11,7 +11,8 @@ import json
 import sys
 
 MODELS = ["elastic", "von Mises", "von Mises + F-bar (volume average)", "Drucker-Prager",
-          "Mohr-Coulomb", "piece-wise Drucker-Prager"]
+          "Mohr-Coulomb", "piece-wise Drucker-Prager", "von Mises + nodal F-bar",
+          "von Mises + sub-tet F-bar"]
 KERNELS = ["simd", "scalar", "simd, table gradients"]
 
 
