@@ -85,6 +85,7 @@ void ElementPass::scalar_element(Model& m, const MaterialKernel& kernel, std::in
     for (int k = 0; k < 4; ++k) cJ[k] = node_J[c[k]];
     q = pressure_weight + 4 * es;
   }
+  const double altitude = corner_tet_min_altitude(xe);
   GaussPointState st[4];
   for (int g = 0; g < 4; ++g) st[g] = m.states[e].at(g);
   double sigma[24];
@@ -95,7 +96,7 @@ void ElementPass::scalar_element(Model& m, const MaterialKernel& kernel, std::in
                                      Xe);
       },
       kernel);
-  result.min_altitude = corner_tet_min_altitude(xe);
+  result.min_altitude = altitude;
   for (int g = 0; g < 4; ++g) {
     m.states[e].set(g, st[g]);
     for (int k = 0; k < 6; ++k) m.stress[24 * es + 4 * k + g] = sigma[6 * g + k];

@@ -59,6 +59,34 @@ HWY_INLINE void cofactor3(const Lanes8 F[3][3], Lanes8 cof[3][3]) {
   cof[2][2] = F[0][0] * F[1][1] - F[0][1] * F[1][0];
 }
 
+// Each element's smallest corner-tetrahedron altitude, 3 V / largest face area (as
+// corner_tet_min_altitude in element_kernel.hpp, which the scalar pass uses), from the two
+// elements' corner positions (12 each): the 4 faces' cross products as the lanes.
+HWY_INLINE PairOf corner_altitudes(const double* xe0, const double* xe1) {
+  // face f spans edges a_f and b_f from one corner: (01, 02), (01, 03), (02, 03), (12, 13)
+  constexpr int kFrom[4] = {0, 0, 0, 1}, kToA[4] = {1, 1, 2, 2}, kToB[4] = {2, 3, 3, 3};
+  alignas(64) double a[3][8], b[3][8];
+  const double* xs[2] = {xe0, xe1};
+  for (int el = 0; el < 2; ++el)
+    for (int f = 0; f < 4; ++f)
+      for (int k = 0; k < 3; ++k) {
+        a[k][4 * el + f] = xs[el][3 * kToA[f] + k] - xs[el][3 * kFrom[f] + k];
+        b[k][4 * el + f] = xs[el][3 * kToB[f] + k] - xs[el][3 * kFrom[f] + k];
+      }
+  const Lanes8 a0 = load8(a[0]), a1 = load8(a[1]), a2 = load8(a[2]);
+  const Lanes8 b0 = load8(b[0]), b1 = load8(b[1]), b2 = load8(b[2]);
+  const Lanes8 c0 = a1 * b2 - a2 * b1, c1 = a2 * b0 - a0 * b2, c2 = a0 * b1 - a1 * b0;
+  const PairOf area2 = max4(sqrt(c0 * c0 + c1 * c1 + c2 * c2));
+  // 6 V = e01 . (e02 x e03): lane 0's a, lane 1's b and lane 2's b
+  auto vol6 = [&](int el) {
+    const int l = 4 * el;
+    return a[0][l] * (b[1][l] * b[2][l + 1] - b[2][l] * b[1][l + 1]) -
+           a[1][l] * (b[0][l] * b[2][l + 1] - b[2][l] * b[0][l + 1]) +
+           a[2][l] * (b[0][l] * b[1][l + 1] - b[1][l] * b[0][l + 1]);
+  };
+  return {vol6(0) / area2.first, vol6(1) / area2.second};
+}
+
 // The pair's gradients: either J0^-1 with the natural derivatives (straight-sided) or the
 // table, and the Gauss weights.
 struct PairGradients {
@@ -290,11 +318,10 @@ HWY_INLINE void update_pair(const Model& model, const ElementUpdateArrays& in, E
     min_J = {std::fmin(min_J.first, j0.first), std::fmin(min_J.second, j0.second)};
   }
   const PairOf eps = max4(st.eps_p);
-  in.result[e0] = {energy.first, dissipation.first, min_J.first, eps.first,
-                   corner_tet_min_altitude(xe0)};
+  const PairOf altitude = corner_altitudes(xe0, xe1);
+  in.result[e0] = {energy.first, dissipation.first, min_J.first, eps.first, altitude.first};
   if (!single)
-    in.result[e1] = {energy.second, dissipation.second, min_J.second, eps.second,
-                     corner_tet_min_altitude(xe1)};
+    in.result[e1] = {energy.second, dissipation.second, min_J.second, eps.second, altitude.second};
 }
 
 template <FbarMode kFbar, bool kStraight, class Model>

@@ -3,7 +3,7 @@
 // The SIMD element update: internal forces, stresses, energies and the Gauss-point history of
 // TET10 elements two at a time (their 8 Gauss points as the lanes of one pack), for the
 // instruction set of the machine it runs on (Google Highway's dynamic dispatch: AVX-512, AVX2,
-// SSE4 or plain 128-bit code, chosen once at run time). The same physics as the scalar kernel
+// or portable scalar code, chosen once at run time). The same physics as the scalar kernel
 // of engine/element_kernel.hpp, which stays the reference its tests compare with (to 1e-12):
 // the same F-bar forms, the same return mappings (materials/lanes/), the eigen-solver of
 // materials/symmetric_eigen3.hpp without branches.
@@ -63,7 +63,7 @@ void update_element_pairs(const MaterialKernel& material, FbarMode fbar, bool st
                           std::size_t count, double dt);
 
 // The instruction sets this binary has code for and this machine runs, best first ("AVX3",
-// "AVX2", "SSE4", "EMU128"), and the one in use.
+// "AVX2", "SCALAR"), and the one in use.
 std::vector<std::string> element_update_targets();
 std::string element_update_target();
 // Restricts the update to one of element_update_targets() (tests and benchmarks compare them);

@@ -3,10 +3,10 @@
 // HWY_NAMESPACE by the per-target element code (engine/element_update/), never on its own).
 //
 // Lanes8: eight doubles, the 4 Gauss points of two elements (lanes 0-3 the first element,
-// 4-7 the second), whatever the vector width: one AVX-512 vector, two AVX2 vectors, four SSE4
-// (or emulated 128-bit) vectors. Element code is written once on Lanes8 and compiled for each
-// instruction set; two elements per pack also give the out-of-order core two independent
-// chains (worth about 1.4x in cache on this kernel). Arithmetic, comparisons, select,
+// 4-7 the second), whatever the vector width: one AVX-512 vector, two AVX2 vectors, or eight
+// one-lane ones (Highway's portable SCALAR target). Element code is written once on Lanes8
+// and compiled for each instruction set; two elements per pack also give the out-of-order core
+// two independent chains (worth about 1.4x in cache on this kernel). Arithmetic, comparisons, select,
 // sqrt, log and exp act lane by lane; the only cross-lane operations are the per-element sums
 // and extremes (sum4, min4, max4) and the loads that broadcast a per-element value.
 #if defined(FEMDEM_LANES8_INL_H_) == defined(HWY_TARGET_TOGGLE)

@@ -10,7 +10,7 @@
 // the thesis' five concrete pieces), 6 von Mises + nodal F-bar, 7 von Mises + sub-tet F-bar;
 // kernel: 0 SIMD, 1 scalar, 2 SIMD reading the 120-number gradient table as for curved
 // elements (what recomputing the gradients from J0^-1 saves). The block is stretched and
-// sheared so that plastic points yield. FEMDEM_BENCH_TARGET=EMU128 (or another of
+// sheared so that plastic points yield. FEMDEM_BENCH_TARGET=SCALAR (or another of
 // element_update_targets()) runs the SIMD update on that instruction set instead of the best.
 // Run: build/tools/bench/bench_element_pass --benchmark_counters_tabular=true
 //      [--benchmark_filter='Pass/model:1/elements:100000/']
