@@ -68,7 +68,7 @@ std::int64_t ElementPass::simd_elements() const {
 }
 
 void ElementPass::scalar_element(Model& m, const MaterialKernel& kernel, std::int32_t e, double dt,
-                                 const double* node_J, double* pressure_weight, double* force,
+                                 const NodalFbarArrays& nodal, double* force,
                                  ElementResult& result) const {
   const Tet10& c = m.conn[e];
   double xe[30], Xe[30];
@@ -81,9 +81,10 @@ void ElementPass::scalar_element(Model& m, const MaterialKernel& kernel, std::in
   const FbarMode fbar = m.element_fbar[e];
   double cJ[4] = {1, 1, 1, 1};
   double* q = nullptr;
-  if (fbar == FbarMode::Nodal && node_J) {
-    for (int k = 0; k < 4; ++k) cJ[k] = node_J[c[k]];
-    q = pressure_weight + 4 * es;
+  const bool nodal_fbar = fbar == FbarMode::Nodal && nodal.node_J;
+  if (nodal_fbar) {
+    for (int k = 0; k < 4; ++k) cJ[k] = nodal.node_J[c[k]];
+    q = nodal.pressure_weight + 4 * es;
   }
   const double altitude = corner_tet_min_altitude(xe);
   GaussPointState st[4];
@@ -97,37 +98,88 @@ void ElementPass::scalar_element(Model& m, const MaterialKernel& kernel, std::in
       },
       kernel);
   result.min_altitude = altitude;
+  if (nodal_fbar) {
+    double* vg = nodal.volume_gradient + 30 * es;
+    for (int i = 0; i < 30; ++i) vg[i] = 0.0;
+    tet10_add_volume_gradient(xe, m.dNdX.data() + 120 * es, m.gauss_weight.data() + 4 * es, 1.0,
+                              vg);
+  }
   for (int g = 0; g < 4; ++g) {
     m.states[e].set(g, st[g]);
     for (int k = 0; k < 6; ++k) m.stress[24 * es + 4 * k + g] = sigma[6 * g + k];
   }
 }
 
+ElementUpdateArrays ElementPass::arrays(Model& m, std::vector<double>& force,
+                                        std::vector<ElementResult>& result,
+                                        const NodalFbarArrays& nodal) const {
+  ElementUpdateArrays a;
+  a.x = m.x.data();
+  a.X = m.X.data();
+  a.conn = m.conn.data();
+  a.inverse_jacobian = m.inverse_jacobian.data();
+  a.gauss_weight = m.gauss_weight.data();
+  a.dNdX_lanes = dNdX_lanes_.data();
+  a.subtet_volume0 = m.subtet_volume0.data();
+  a.node_J = nodal.node_J;
+  a.pressure_weight = nodal.pressure_weight;
+  a.volume_gradient = nodal.volume_gradient;
+  a.state = m.states.data();
+  a.stress = m.stress.data();
+  a.force = force.data();
+  a.result = result.data();
+  return a;
+}
+
+void ElementPass::nodal_volumes(const Model& m, double* volume) const {
+  ElementUpdateArrays in;  // what the volumes read
+  in.x = m.x.data();
+  in.X = m.X.data();
+  in.conn = m.conn.data();
+  in.inverse_jacobian = m.inverse_jacobian.data();
+  in.gauss_weight = m.gauss_weight.data();
+  in.dNdX_lanes = dNdX_lanes_.data();
+  const auto nc = static_cast<std::int64_t>(chunks_.size());
+  const auto ns = static_cast<std::int64_t>(scalar_elements_.size());
+  const bool simd = choice_ == ElementKernelChoice::simd;
+#pragma omp parallel if (m.element_count > kParallelMinElements)
+  {
+    if (simd) {
+#pragma omp for schedule(static) nowait
+      for (std::int64_t c = 0; c < nc; ++c) {
+        const Chunk& k = chunks_[c];
+        if (k.fbar == FbarMode::Nodal)
+          element_pair_volumes(k.straight, in, pairs_.data() + k.begin, k.end - k.begin, volume);
+      }
+    }
+    // the scalar kernel's elements (every element when it is the choice)
+    const std::int64_t n = simd ? ns : m.element_count;
+#pragma omp for schedule(static)
+    for (std::int64_t i = 0; i < n; ++i) {
+      const std::int32_t e = simd ? scalar_elements_[i] : static_cast<std::int32_t>(i);
+      if (m.element_fbar[e] != FbarMode::Nodal) continue;
+      double xe[30];
+      for (int a = 0; a < 10; ++a)
+        for (int k = 0; k < 3; ++k) xe[3 * a + k] = m.x[3 * m.conn[e][a] + k];
+      const std::size_t es = static_cast<std::size_t>(e);
+      volume[e] =
+          tet10_current_volume(xe, m.dNdX.data() + 120 * es, m.gauss_weight.data() + 4 * es);
+    }
+  }
+}
+
 void ElementPass::update(Model& m, const std::vector<MaterialKernel>& kernels, double dt,
-                         const double* node_J, double* pressure_weight, std::vector<double>& force,
+                         const NodalFbarArrays& nodal, std::vector<double>& force,
                          std::vector<ElementResult>& result) {
   const std::int32_t ne = m.element_count;
   if (choice_ == ElementKernelChoice::scalar) {
 #pragma omp parallel for schedule(static) if (ne > kParallelMinElements)
     for (std::int32_t e = 0; e < ne; ++e)
-      scalar_element(m, kernels[m.element_material[e]], e, dt, node_J, pressure_weight,
+      scalar_element(m, kernels[m.element_material[e]], e, dt, nodal,
                      force.data() + 30 * static_cast<std::size_t>(e), result[e]);
     return;
   }
-  ElementUpdateArrays arrays;
-  arrays.x = m.x.data();
-  arrays.X = m.X.data();
-  arrays.conn = m.conn.data();
-  arrays.inverse_jacobian = m.inverse_jacobian.data();
-  arrays.gauss_weight = m.gauss_weight.data();
-  arrays.dNdX_lanes = dNdX_lanes_.data();
-  arrays.subtet_volume0 = m.subtet_volume0.data();
-  arrays.node_J = node_J;
-  arrays.pressure_weight = pressure_weight;
-  arrays.state = m.states.data();
-  arrays.stress = m.stress.data();
-  arrays.force = force.data();
-  arrays.result = result.data();
+  const ElementUpdateArrays in = arrays(m, force, result, nodal);
   const auto nc = static_cast<std::int64_t>(chunks_.size());
   const auto ns = static_cast<std::int64_t>(scalar_elements_.size());
 #pragma omp parallel if (ne > kParallelMinElements)
@@ -135,13 +187,13 @@ void ElementPass::update(Model& m, const std::vector<MaterialKernel>& kernels, d
 #pragma omp for schedule(static) nowait
     for (std::int64_t c = 0; c < nc; ++c) {
       const Chunk& k = chunks_[c];
-      update_element_pairs(kernels[k.material], k.fbar, k.straight, arrays, pairs_.data() + k.begin,
+      update_element_pairs(kernels[k.material], k.fbar, k.straight, in, pairs_.data() + k.begin,
                            k.end - k.begin, dt);
     }
 #pragma omp for schedule(static)
     for (std::int64_t i = 0; i < ns; ++i) {
       const std::int32_t e = scalar_elements_[i];
-      scalar_element(m, kernels[m.element_material[e]], e, dt, node_J, pressure_weight,
+      scalar_element(m, kernels[m.element_material[e]], e, dt, nodal,
                      force.data() + 30 * static_cast<std::size_t>(e), result[e]);
     }
   }

@@ -18,6 +18,14 @@
 
 namespace femdem {
 
+// The nodal F-bar's per-node inputs and per-element outputs (engine/element_kernel.hpp; all
+// null when the model has no nodal F-bar element).
+struct NodalFbarArrays {
+  const double* node_J = nullptr;     // in: each node's averaged volume ratio
+  double* pressure_weight = nullptr;  // out: 4 per element, the corners' shares of dW/dJbar
+  double* volume_gradient = nullptr;  // out: 30 per element, d(element volume)/dx
+};
+
 enum class ElementKernelChoice {
   simd,   // the SIMD update where it applies (the default)
   scalar  // every element through the scalar kernel (the reference)
@@ -34,11 +42,14 @@ class ElementPass {
   std::int64_t simd_elements() const;
 
   // One pass at the current positions m.x. force: 30 per element (overwritten); result: one
-  // per element. node_J, pressure_weight: the nodal F-bar's inputs (corner volume ratios per
-  // node) and outputs (4 per element); null without nodal F-bar elements.
-  void update(Model& m, const std::vector<MaterialKernel>& kernels, double dt, const double* node_J,
-              double* pressure_weight, std::vector<double>& force,
+  // per element; nodal: the nodal F-bar's arrays (only its elements' entries are written).
+  void update(Model& m, const std::vector<MaterialKernel>& kernels, double dt,
+              const NodalFbarArrays& nodal, std::vector<double>& force,
               std::vector<ElementResult>& result);
+
+  // The current volume (sum_g w_g det F_g) of every nodal F-bar element into volume[e] (the
+  // others are not written), the same way the update computes it.
+  void nodal_volumes(const Model& m, double* volume) const;
 
  private:
   struct Chunk {
@@ -48,8 +59,10 @@ class ElementPass {
     std::size_t begin = 0, end = 0;  // in pairs_
   };
   void scalar_element(Model& m, const MaterialKernel& kernel, std::int32_t e, double dt,
-                      const double* node_J, double* pressure_weight, double* force,
-                      ElementResult& result) const;
+                      const NodalFbarArrays& nodal, double* force, ElementResult& result) const;
+  ElementUpdateArrays arrays(Model& m, std::vector<double>& force,
+                             std::vector<ElementResult>& result,
+                             const NodalFbarArrays& nodal) const;
 
   ElementKernelChoice choice_ = ElementKernelChoice::simd;
   std::vector<ElementPair> pairs_;

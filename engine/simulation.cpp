@@ -45,6 +45,7 @@ Simulation::Simulation(Model model)
     // reference volume around each corner node, over the nodal-F-bar elements that share it
     elem_volume_.assign(ne, 0.0);
     elem_pressure_weight_.assign(4 * ne, 0.0);
+    elem_volume_gradient_.assign(30 * ne, 0.0);
     node_J_.assign(nn, 1.0);
     node_Q_.assign(nn, 0.0);
     node_ref_volume_.assign(nn, 0.0);
@@ -95,16 +96,7 @@ void Simulation::compute_forces(double step_dt) {
 
   // 0. nodal F-bar: each corner node's volume ratio over the elements around it
   if (has_nodal_fbar_) {
-#pragma omp parallel for schedule(static) if (ne > kParallelMinElements)
-    for (std::int32_t e = 0; e < ne; ++e) {
-      if (m.element_fbar[e] != FbarMode::Nodal) continue;
-      double xe[30];
-      for (int a = 0; a < 10; ++a)
-        for (int k = 0; k < 3; ++k) xe[3 * a + k] = x[3 * m.conn[e][a] + k];
-      const std::size_t es = static_cast<std::size_t>(e);
-      elem_volume_[e] =
-          tet10_current_volume(xe, m.dNdX.data() + 120 * es, m.gauss_weight.data() + 4 * es);
-    }
+    element_pass_.nodal_volumes(m, elem_volume_.data());
 #pragma omp parallel for schedule(static) if (nn > kParallelMinNodes)
     for (std::int32_t n = 0; n < nn; ++n) {
       if (!(node_ref_volume_[n] > 0.0)) continue;
@@ -118,9 +110,10 @@ void Simulation::compute_forces(double step_dt) {
   }
 
   // 1. elements: independent, written to per-element buffers (engine/element_pass.hpp)
-  element_pass_.update(m, kernels_, step_dt, has_nodal_fbar_ ? node_J_.data() : nullptr,
-                       has_nodal_fbar_ ? elem_pressure_weight_.data() : nullptr, elem_force_,
-                       elem_result_);
+  NodalFbarArrays nodal;
+  if (has_nodal_fbar_)
+    nodal = {node_J_.data(), elem_pressure_weight_.data(), elem_volume_gradient_.data()};
+  element_pass_.update(m, kernels_, step_dt, nodal, elem_force_, elem_result_);
   // 1a. per element: its energies, bulk viscosity and stable step. The run must stop at the
   // first inverted element (lowest index: min is exact, so the same element whatever the threads)
   std::int32_t first_bad = ne;
@@ -153,7 +146,7 @@ void Simulation::compute_forces(double step_dt) {
   }
 
   // 1b. nodal F-bar pressure: gather each corner's dW/dJbar, then every element adds
-  // sum_c Q_c / V_c times the gradient of its own volume
+  // sum_c Q_c / V_c times the gradient of its own volume (written by the element pass)
   if (has_nodal_fbar_) {
 #pragma omp parallel for schedule(static) if (nn > kParallelMinNodes)
     for (std::int32_t n = 0; n < nn; ++n) {
@@ -170,13 +163,11 @@ void Simulation::compute_forces(double step_dt) {
     for (std::int32_t e = 0; e < ne; ++e) {
       if (m.element_fbar[e] != FbarMode::Nodal) continue;
       const Tet10& c = m.conn[e];
-      double xe[30];
-      for (int a = 0; a < 10; ++a)
-        for (int k = 0; k < 3; ++k) xe[3 * a + k] = x[3 * c[a] + k];
       const double s = node_Q_[c[0]] + node_Q_[c[1]] + node_Q_[c[2]] + node_Q_[c[3]];
       const std::size_t es = static_cast<std::size_t>(e);
-      tet10_add_volume_gradient(xe, m.dNdX.data() + 120 * es, m.gauss_weight.data() + 4 * es, s,
-                                elem_force_.data() + 30 * es);
+      const double* vg = elem_volume_gradient_.data() + 30 * es;
+      double* fe = elem_force_.data() + 30 * es;
+      for (int i = 0; i < 30; ++i) fe[i] += s * vg[i];
     }
   }
 

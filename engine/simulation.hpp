@@ -139,7 +139,8 @@ class Simulation {
   mutable std::vector<double> sum_scratch_;   // chunk sums of ordered_sum
   // nodal F-bar (FbarMode::Nodal) work arrays
   bool has_nodal_fbar_ = false;
-  std::vector<double> elem_volume_, elem_pressure_weight_, node_J_, node_Q_, node_ref_volume_;
+  std::vector<double> elem_volume_, elem_pressure_weight_, elem_volume_gradient_, node_J_, node_Q_,
+      node_ref_volume_;
   double time_ = 0.0;
   std::int64_t steps_ = 0;
   double dt_ = 0.0;

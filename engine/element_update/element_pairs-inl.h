@@ -96,18 +96,14 @@ struct PairGradients {
   const double* table1 = nullptr;
 };
 
-template <FbarMode kFbar, bool kStraight, class Model>
-HWY_INLINE void update_pair(const Model& model, const ElementUpdateArrays& in, ElementPair pr,
-                            double dt) {
-  constexpr bool kElastic = std::is_same_v<Model, ElasticModel>;
-  const std::size_t e0 = static_cast<std::size_t>(pr.first),
-                    e1 = static_cast<std::size_t>(pr.second);
+// F = I + sum_a u_a (x) dN_a/dX at the pair's 8 points, u = x - X (the scalar kernel's form:
+// rounding relative to the displacements, not to the positions), and the gradients it used.
+template <bool kStraight>
+HWY_INLINE void deformation_gradient(const ElementUpdateArrays& in, std::size_t e0, std::size_t e1,
+                                     PairGradients& grad, Lanes8 F[3][3]) {
   const Tet10& c0 = in.conn[e0];
   const Tet10& c1 = in.conn[e1];
   const NaturalGradients& nat = natural_gradients();
-
-  // 1. F = I + sum_a u_a (x) dN_a/dX at the 8 points, u = x - X (the scalar kernel's form:
-  // rounding relative to the displacements, not to the positions)
   Lanes8 U[10][3];
   for (int a = 0; a < 10; ++a)
     for (int i = 0; i < 3; ++i) {
@@ -115,18 +111,7 @@ HWY_INLINE void update_pair(const Model& model, const ElementUpdateArrays& in, E
       const std::size_t n1 = 3 * static_cast<std::size_t>(c1[a]) + i;
       U[a][i] = pair(in.x[n0] - in.X[n0], in.x[n1] - in.X[n1]);
     }
-  // the current positions the per-element geometry needs: the corners (the stable step's
-  // altitude) or all 10 nodes (the sub-tet volume)
-  constexpr int kPositions = kFbar == FbarMode::SubTet ? 10 : 4;
-  double xe0[3 * kPositions], xe1[3 * kPositions];
-  for (int a = 0; a < kPositions; ++a)
-    for (int i = 0; i < 3; ++i) {
-      xe0[3 * a + i] = in.x[3 * static_cast<std::size_t>(c0[a]) + i];
-      xe1[3 * a + i] = in.x[3 * static_cast<std::size_t>(c1[a]) + i];
-    }
-  PairGradients grad;
   grad.weight = load_pair(in.gauss_weight + 4 * e0, in.gauss_weight + 4 * e1);
-  Lanes8 F[3][3];
   if constexpr (kStraight) {
     const double* j0 = in.inverse_jacobian + 9 * e0;
     const double* j1 = in.inverse_jacobian + 9 * e1;
@@ -155,6 +140,81 @@ HWY_INLINE void update_pair(const Model& model, const ElementUpdateArrays& in, E
         F[i][j] = s + Lanes8(i == j ? 1.0 : 0.0);
       }
   }
+}
+
+// f_a = sum_g P_g dN_a/dX|_g for the pair: per element, the sum of its 4 lanes (f1 not written
+// for a single element).
+template <bool kStraight>
+HWY_INLINE void node_sums(const Lanes8 P[3][3], const PairGradients& grad, double* f0, double* f1,
+                          bool single) {
+  if constexpr (kStraight) {
+    const NaturalGradients& nat = natural_gradients();
+    Lanes8 Q[3][3];  // P J0^-T: f_a,i = sum_g sum_k Q_ik dN_a/dxi_k
+    for (int i = 0; i < 3; ++i)
+      for (int kk = 0; kk < 3; ++kk)
+        Q[i][kk] =
+            P[i][0] * grad.jinv[kk][0] + P[i][1] * grad.jinv[kk][1] + P[i][2] * grad.jinv[kk][2];
+    for (int a = 0; a < 10; ++a) {
+      const Lanes8 n0 = load8(nat.d[a][0]), n1 = load8(nat.d[a][1]), n2 = load8(nat.d[a][2]);
+      for (int i = 0; i < 3; ++i) {
+        const PairOf s = sum4(mul_add(Q[i][0], n0, mul_add(Q[i][1], n1, Q[i][2] * n2)));
+        f0[3 * a + i] = s.first;
+        if (!single) f1[3 * a + i] = s.second;
+      }
+    }
+  } else {
+    for (int a = 0; a < 10; ++a) {
+      Lanes8 d[3];
+      for (int j = 0; j < 3; ++j)
+        d[j] = load_pair(grad.table0 + (3 * a + j) * 4, grad.table1 + (3 * a + j) * 4);
+      for (int i = 0; i < 3; ++i) {
+        const PairOf s = sum4(mul_add(P[i][0], d[0], mul_add(P[i][1], d[1], P[i][2] * d[2])));
+        f0[3 * a + i] = s.first;
+        if (!single) f1[3 * a + i] = s.second;
+      }
+    }
+  }
+}
+
+// Each element's current volume, sum_g w_g det F_g (as tet10_current_volume): the nodal F-bar's
+// input, before the update.
+template <bool kStraight>
+HWY_NOINLINE void pair_volumes(const ElementUpdateArrays& in, const ElementPair* pairs,
+                               std::size_t count, double* volume) {
+  for (std::size_t p = 0; p < count; ++p) {
+    const std::size_t e0 = static_cast<std::size_t>(pairs[p].first),
+                      e1 = static_cast<std::size_t>(pairs[p].second);
+    PairGradients grad;
+    Lanes8 F[3][3];
+    deformation_gradient<kStraight>(in, e0, e1, grad, F);
+    const PairOf v = sum4(grad.weight * det3(F));
+    volume[e0] = v.first;
+    if (e1 != e0) volume[e1] = v.second;
+  }
+}
+
+template <FbarMode kFbar, bool kStraight, class Model>
+HWY_INLINE void update_pair(const Model& model, const ElementUpdateArrays& in, ElementPair pr,
+                            double dt) {
+  constexpr bool kElastic = std::is_same_v<Model, ElasticModel>;
+  const std::size_t e0 = static_cast<std::size_t>(pr.first),
+                    e1 = static_cast<std::size_t>(pr.second);
+  const Tet10& c0 = in.conn[e0];
+  const Tet10& c1 = in.conn[e1];
+
+  // 1. F at the 8 points
+  PairGradients grad;
+  Lanes8 F[3][3];
+  deformation_gradient<kStraight>(in, e0, e1, grad, F);
+  // the current positions the per-element geometry needs: the corners (the stable step's
+  // altitude) or all 10 nodes (the sub-tet volume)
+  constexpr int kPositions = kFbar == FbarMode::SubTet ? 10 : 4;
+  double xe0[3 * kPositions], xe1[3 * kPositions];
+  for (int a = 0; a < kPositions; ++a)
+    for (int i = 0; i < 3; ++i) {
+      xe0[3 * a + i] = in.x[3 * static_cast<std::size_t>(c0[a]) + i];
+      xe1[3 * a + i] = in.x[3 * static_cast<std::size_t>(c1[a]) + i];
+    }
   const Lanes8 J = det3(F);
   Lanes8 cof[3][3];
   cofactor3(F, cof);
@@ -273,31 +333,15 @@ HWY_INLINE void update_pair(const Model& model, const ElementUpdateArrays& in, E
   double* f0 = in.force + 30 * e0;
   double* f1 = in.force + 30 * e1;
   const bool single = e0 == e1;
-  if constexpr (kStraight) {
-    Lanes8 Q[3][3];  // P J0^-T: f_a,i = sum_g sum_k Q_ik dN_a/dxi_k
+  node_sums<kStraight>(P, grad, f0, f1, single);
+  if constexpr (kFbar == FbarMode::Nodal) {
+    // the gradient of the element's volume, sum_g w_g cof(F_g) dN/dX|_g: the nodal F-bar's
+    // pressure forces are this times a per-element factor known after the pass
+    Lanes8 Pv[3][3];
     for (int i = 0; i < 3; ++i)
-      for (int kk = 0; kk < 3; ++kk)
-        Q[i][kk] =
-            P[i][0] * grad.jinv[kk][0] + P[i][1] * grad.jinv[kk][1] + P[i][2] * grad.jinv[kk][2];
-    for (int a = 0; a < 10; ++a) {
-      const Lanes8 n0 = load8(nat.d[a][0]), n1 = load8(nat.d[a][1]), n2 = load8(nat.d[a][2]);
-      for (int i = 0; i < 3; ++i) {
-        const PairOf s = sum4(mul_add(Q[i][0], n0, mul_add(Q[i][1], n1, Q[i][2] * n2)));
-        f0[3 * a + i] = s.first;
-        if (!single) f1[3 * a + i] = s.second;
-      }
-    }
-  } else {
-    for (int a = 0; a < 10; ++a) {
-      Lanes8 d[3];
-      for (int j = 0; j < 3; ++j)
-        d[j] = load_pair(grad.table0 + (3 * a + j) * 4, grad.table1 + (3 * a + j) * 4);
-      for (int i = 0; i < 3; ++i) {
-        const PairOf s = sum4(mul_add(P[i][0], d[0], mul_add(P[i][1], d[1], P[i][2] * d[2])));
-        f0[3 * a + i] = s.first;
-        if (!single) f1[3 * a + i] = s.second;
-      }
-    }
+      for (int j = 0; j < 3; ++j) Pv[i][j] = w * cof[i][j];
+    node_sums<kStraight>(Pv, grad, in.volume_gradient + 30 * e0, in.volume_gradient + 30 * e1,
+                         single);
   }
 
   if constexpr (kFbar == FbarMode::SubTet) {

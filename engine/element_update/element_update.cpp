@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The SIMD element update (element_update.hpp): the choice of variant (F-bar mode and gradient
 // kind, each compiled in its own generated source from element_update_variant.cpp.in) and of
-// instruction set. Compiled once per target by Highway's foreach_target for the one question
-// that needs the lanes code: which material models it has.
+// instruction set. Compiled once per target by Highway's foreach_target for what needs the lanes
+// code beside the variants: which material models it has, and the elements' volumes.
 #include "engine/element_update/element_update.hpp"
 
 #include <type_traits>
@@ -15,7 +15,7 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
-#include "materials/lanes/material_lanes-inl.h"
+#include "engine/element_update/element_pairs-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace femdem::HWY_NAMESPACE {
@@ -25,6 +25,14 @@ bool HasLanesReturn(const MaterialKernel& material) {
                     material);
 }
 
+void PairVolumes(bool straight, const ElementUpdateArrays& arrays, const ElementPair* pairs,
+                 std::size_t count, double* volume) {
+  if (straight)
+    element_pairs_detail::pair_volumes<true>(arrays, pairs, count, volume);
+  else
+    element_pairs_detail::pair_volumes<false>(arrays, pairs, count, volume);
+}
+
 }  // namespace femdem::HWY_NAMESPACE
 HWY_AFTER_NAMESPACE();
 
@@ -32,6 +40,12 @@ HWY_AFTER_NAMESPACE();
 namespace femdem {
 
 HWY_EXPORT(HasLanesReturn);
+HWY_EXPORT(PairVolumes);
+
+void element_pair_volumes(bool straight, const ElementUpdateArrays& arrays,
+                          const ElementPair* pairs, std::size_t count, double* volume) {
+  HWY_DYNAMIC_DISPATCH(PairVolumes)(straight, arrays, pairs, count, volume);
+}
 
 bool element_update_supports(const MaterialKernel& material, FbarMode /*fbar*/) {
   return HWY_DYNAMIC_DISPATCH(HasLanesReturn)(material);  // every F-bar mode

@@ -46,6 +46,7 @@ struct ElementUpdateArrays {
   const double* subtet_volume0 = nullptr;    // SubTet F-bar: the 8 sub-tets' reference volume
   const double* node_J = nullptr;            // Nodal F-bar: each node's averaged volume ratio
   double* pressure_weight = nullptr;         // Nodal F-bar, out: 4 per element (element_kernel)
+  double* volume_gradient = nullptr;         // Nodal F-bar, out: d(volume)/dx, 30 per element
   ElementStates* state = nullptr;            // history (not touched for elastic materials)
   double* stress = nullptr;                  // out: Cauchy stress, [e][6][4] (xx yy zz xy yz xz)
   double* force = nullptr;                   // out: internal nodal forces, 30 per element
@@ -61,6 +62,12 @@ bool element_update_supports(const MaterialKernel& material, FbarMode fbar);
 void update_element_pairs(const MaterialKernel& material, FbarMode fbar, bool straight,
                           const ElementUpdateArrays& arrays, const ElementPair* pairs,
                           std::size_t count, double dt);
+
+// Each element's current volume (sum_g w_g det F_g) for `count` pairs, all straight-sided or all
+// curved: the nodal F-bar's input, computed before the update. Reads x, X, conn, the gradients
+// and the weights of `arrays`.
+void element_pair_volumes(bool straight, const ElementUpdateArrays& arrays,
+                          const ElementPair* pairs, std::size_t count, double* volume);
 
 // The instruction sets this binary has code for and this machine runs, best first ("AVX3",
 // "AVX2", "SCALAR"), and the one in use.

@@ -196,7 +196,7 @@ double relative_difference(const double* a, const double* b, int n, double floor
 }
 
 struct PassResult {
-  std::vector<double> force, stress, pressure_weight;
+  std::vector<double> force, stress, pressure_weight, volume;
   std::vector<ElementStates> states;
   std::vector<ElementResult> results;
   int plastic_points = 0;
@@ -214,47 +214,33 @@ std::vector<PassResult> run_path(const MaterialParams& mat, FbarMode fbar, bool 
   }
   std::vector<double> force(30 * static_cast<std::size_t>(m.element_count));
   std::vector<ElementResult> results(m.element_count);
-  // nodal F-bar's input: each corner node's volume ratio over the elements around it (as
-  // Simulation::compute_forces forms it)
+  // nodal F-bar's input: each corner node's volume ratio over the elements around it, from
+  // the elements' volumes as this kernel's pass computes them (as Simulation::compute_forces)
   const bool nodal = fbar == FbarMode::Nodal;
-  std::vector<double> node_J(nodal ? m.node_count : 0);
-  std::vector<double> pressure_weight(nodal ? 4 * static_cast<std::size_t>(m.element_count) : 0);
-  std::vector<double> V(node_J.size(), 0.0);  // reference volume around each corner node
-  auto element_x = [&](std::int32_t e, double* xe) {
-    for (int a = 0; a < 10; ++a)
-      for (int k = 0; k < 3; ++k) xe[3 * a + k] = m.x[3 * m.conn[e][a] + k];
-  };
+  const std::size_t ne = static_cast<std::size_t>(m.element_count);
+  std::vector<double> node_J(nodal ? m.node_count : 0), V(node_J.size(), 0.0), volume(ne);
+  std::vector<double> pressure_weight(nodal ? 4 * ne : 0), volume_gradient(nodal ? 30 * ne : 0);
+  for (std::size_t e = 0; e < ne && nodal; ++e)
+    for (int c = 0; c < 4; ++c)
+      for (int g = 0; g < 4; ++g) V[m.conn[e][c]] += m.gauss_weight[4 * e + g];
   auto corner_volume_ratios = [&] {
+    pass.nodal_volumes(m, volume.data());
     std::vector<double> v(node_J.size(), 0.0);
-    std::fill(V.begin(), V.end(), 0.0);
-    for (std::int32_t e = 0; e < m.element_count; ++e) {
-      double xe[30];
-      element_x(e, xe);
-      const double* w = m.gauss_weight.data() + 4 * static_cast<std::size_t>(e);
-      const double ve =
-          tet10_current_volume(xe, m.dNdX.data() + 120 * static_cast<std::size_t>(e), w);
-      for (int c = 0; c < 4; ++c) {
-        v[m.conn[e][c]] += ve;
-        V[m.conn[e][c]] += w[0] + w[1] + w[2] + w[3];
-      }
-    }
+    for (std::size_t e = 0; e < ne; ++e)
+      for (int c = 0; c < 4; ++c) v[m.conn[e][c]] += volume[e];
     for (std::size_t n = 0; n < node_J.size(); ++n) node_J[n] = V[n] > 0.0 ? v[n] / V[n] : 1.0;
   };
-  // ... and its pressure forces from the elements' corner weights, added to the elements'
-  // forces (compute_forces' step 1b): the elements' whole forces are compared, since at an apex
-  // return the deviatoric part the pass writes alone is round-off
+  // ... and its pressure forces from the elements' corner weights and volume gradients, added
+  // to the elements' forces (compute_forces' step 1b): the elements' whole forces are compared,
+  // since at an apex return the deviatoric part the pass writes alone is round-off
   auto add_nodal_pressure = [&] {
     std::vector<double> Q(node_J.size(), 0.0);
-    for (std::int32_t e = 0; e < m.element_count; ++e)
-      for (int c = 0; c < 4; ++c)
-        Q[m.conn[e][c]] += pressure_weight[4 * static_cast<std::size_t>(e) + c];
-    for (std::int32_t e = 0; e < m.element_count; ++e) {
-      double xe[30], q = 0.0;
-      element_x(e, xe);
+    for (std::size_t e = 0; e < ne; ++e)
+      for (int c = 0; c < 4; ++c) Q[m.conn[e][c]] += pressure_weight[4 * e + c];
+    for (std::size_t e = 0; e < ne; ++e) {
+      double q = 0.0;
       for (int c = 0; c < 4; ++c) q += Q[m.conn[e][c]] / V[m.conn[e][c]];
-      const std::size_t es = static_cast<std::size_t>(e);
-      tet10_add_volume_gradient(xe, m.dNdX.data() + 120 * es, m.gauss_weight.data() + 4 * es, q,
-                                force.data() + 30 * es);
+      for (int i = 0; i < 30; ++i) force[30 * e + i] += q * volume_gradient[30 * e + i];
     }
   };
   std::mt19937 rng(3);
@@ -263,10 +249,13 @@ std::vector<PassResult> run_path(const MaterialParams& mat, FbarMode fbar, bool 
   for (int s = 1; s <= 6; ++s) {
     deform(m, s, rng, H);
     if (nodal) corner_volume_ratios();
-    pass.update(m, kernels, 1e-7, nodal ? node_J.data() : nullptr,
-                nodal ? pressure_weight.data() : nullptr, force, results);
+    NodalFbarArrays arrays;
+    if (nodal) arrays = {node_J.data(), pressure_weight.data(), volume_gradient.data()};
+    pass.update(m, kernels, 1e-7, arrays, force, results);
     if (nodal) add_nodal_pressure();
-    PassResult r{force, m.stress, pressure_weight, m.states, results, 0};
+    PassResult r{
+        force,   m.stress, pressure_weight, nodal ? volume : std::vector<double>(), m.states,
+        results, 0};
     std::vector<ElementStates> before =
         path.empty() ? std::vector<ElementStates>(m.element_count) : path.back().states;
     for (std::int32_t e = 0; e < m.element_count; ++e)
@@ -292,6 +281,9 @@ void expect_agree(const std::vector<PassResult>& simd, const std::vector<PassRes
     if (!ref[s].pressure_weight.empty())
       worst_q = std::fmax(worst_q, relative_difference(simd[s].pressure_weight.data(),
                                                        ref[s].pressure_weight.data(), 4 * ne));
+    if (!ref[s].volume.empty())
+      worst_q =
+          std::fmax(worst_q, relative_difference(simd[s].volume.data(), ref[s].volume.data(), ne));
     const auto* a = reinterpret_cast<const double*>(simd[s].states.data());
     const auto* b = reinterpret_cast<const double*>(ref[s].states.data());
     static_assert(sizeof(ElementStates) == 32 * sizeof(double));
@@ -324,7 +316,7 @@ void expect_agree(const std::vector<PassResult>& simd, const std::vector<PassRes
   EXPECT_LT(worst_s, tol) << what << ": stresses";
   EXPECT_LT(worst_state, tol) << what << ": state";
   EXPECT_LT(worst_e, tol) << what << ": energies, det F, eps_p, altitude";
-  EXPECT_LT(worst_q, tol) << what << ": nodal F-bar pressure weights";
+  EXPECT_LT(worst_q, tol) << what << ": nodal F-bar pressure weights and volumes";
   std::printf("%-52s force %.1e stress %.1e state %.1e energy %.1e pressure %.1e\n", what.c_str(),
               worst_f, worst_s, worst_state, worst_e, worst_q);
 }
