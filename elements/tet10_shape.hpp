@@ -50,17 +50,22 @@ inline std::array<std::array<double, 3>, kNodes> shape_derivatives(const std::ar
 inline constexpr int kSubTets[8][4] = {{0, 4, 6, 7}, {1, 5, 4, 8}, {2, 6, 5, 9}, {3, 7, 9, 8},
                                        {6, 8, 4, 5}, {6, 8, 5, 9}, {6, 8, 9, 7}, {6, 8, 7, 4}};
 
+// The edges u = b - a, v = c - a, w = d - a of sub-tetrahedron t = (a, b, c, d) of 10 nodes.
+inline void subtet_edges(const double* x, const int (&t)[4], double u[3], double v[3],
+                         double w[3]) {
+  const double* a = x + 3 * t[0];
+  const double* b = x + 3 * t[1];
+  const double* c = x + 3 * t[2];
+  const double* d = x + 3 * t[3];
+  for (int k = 0; k < 3; ++k) u[k] = b[k] - a[k], v[k] = c[k] - a[k], w[k] = d[k] - a[k];
+}
+
 // Sum of the sub-tetrahedra volumes of 10 nodes (30 coordinates).
 inline double subtet_volume(const double* x) {
   double v6 = 0.0;
   for (const auto& t : kSubTets) {
-    const double* a = x + 3 * t[0];
-    const double* b = x + 3 * t[1];
-    const double* c = x + 3 * t[2];
-    const double* d = x + 3 * t[3];
-    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    const double w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+    double u[3], v[3], w[3];
+    subtet_edges(x, t, u, v, w);
     v6 += u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
           u[2] * (v[0] * w[1] - v[1] * w[0]);
   }
@@ -71,13 +76,8 @@ inline double subtet_volume(const double* x) {
 // sub-tet F-bar's pressure forces; s carries the 1/6).
 inline void add_subtet_volume_gradient(const double* x, double s, double* fe) {
   for (const auto& t : kSubTets) {
-    const double* a = x + 3 * t[0];
-    const double* b = x + 3 * t[1];
-    const double* c = x + 3 * t[2];
-    const double* d = x + 3 * t[3];
-    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    const double w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+    double u[3], v[3], w[3];
+    subtet_edges(x, t, u, v, w);
     const double gb[3] = {v[1] * w[2] - v[2] * w[1], v[2] * w[0] - v[0] * w[2],
                           v[0] * w[1] - v[1] * w[0]};
     const double gc[3] = {w[1] * u[2] - w[2] * u[1], w[2] * u[0] - w[0] * u[2],

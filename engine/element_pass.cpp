@@ -110,9 +110,7 @@ void ElementPass::scalar_element(Model& m, const MaterialKernel& kernel, std::in
   }
 }
 
-ElementUpdateArrays ElementPass::arrays(Model& m, std::vector<double>& force,
-                                        std::vector<ElementResult>& result,
-                                        const NodalFbarArrays& nodal) const {
+ElementUpdateArrays ElementPass::geometry(const Model& m) const {
   ElementUpdateArrays a;
   a.x = m.x.data();
   a.X = m.X.data();
@@ -120,6 +118,13 @@ ElementUpdateArrays ElementPass::arrays(Model& m, std::vector<double>& force,
   a.inverse_jacobian = m.inverse_jacobian.data();
   a.gauss_weight = m.gauss_weight.data();
   a.dNdX_lanes = dNdX_lanes_.data();
+  return a;
+}
+
+ElementUpdateArrays ElementPass::arrays(Model& m, std::vector<double>& force,
+                                        std::vector<ElementResult>& result,
+                                        const NodalFbarArrays& nodal) const {
+  ElementUpdateArrays a = geometry(m);
   a.subtet_volume0 = m.subtet_volume0.data();
   a.node_J = nodal.node_J;
   a.pressure_weight = nodal.pressure_weight;
@@ -132,13 +137,7 @@ ElementUpdateArrays ElementPass::arrays(Model& m, std::vector<double>& force,
 }
 
 void ElementPass::nodal_volumes(const Model& m, double* volume) const {
-  ElementUpdateArrays in;  // what the volumes read
-  in.x = m.x.data();
-  in.X = m.X.data();
-  in.conn = m.conn.data();
-  in.inverse_jacobian = m.inverse_jacobian.data();
-  in.gauss_weight = m.gauss_weight.data();
-  in.dNdX_lanes = dNdX_lanes_.data();
+  const ElementUpdateArrays in = geometry(m);  // what the volumes read
   const auto nc = static_cast<std::int64_t>(chunks_.size());
   const auto ns = static_cast<std::int64_t>(scalar_elements_.size());
   const bool simd = choice_ == ElementKernelChoice::simd;

@@ -60,6 +60,9 @@ class ElementPass {
   };
   void scalar_element(Model& m, const MaterialKernel& kernel, std::int32_t e, double dt,
                       const NodalFbarArrays& nodal, double* force, ElementResult& result) const;
+  // the arrays the update reads: positions, connectivity, gradients, weights
+  ElementUpdateArrays geometry(const Model& m) const;
+  // ... and those it writes
   ElementUpdateArrays arrays(Model& m, std::vector<double>& force,
                              std::vector<ElementResult>& result,
                              const NodalFbarArrays& nodal) const;
