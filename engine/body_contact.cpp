@@ -166,7 +166,7 @@ void BodyContact::compute(const Model& m, double step_dt, std::vector<double>& f
     node_positions_[q] = Vec3(m.x[3 * n], m.x[3 * n + 1], m.x[3 * n + 2]);
   }
   if (verlet_.needs_rebuild(node_positions_)) update_candidates(m);
-  max_k_over_m_ = near_k_over_m_;
+  max_k_over_m_ = predict_ ? near_k_over_m_ : 0.0;
 
   std::visit([&]<class Law>(const Law&) { evaluate_pairs<Law>(m, step_dt); }, law_);
 
@@ -201,6 +201,30 @@ void BodyContact::compute(const Model& m, double step_dt, std::vector<double>& f
           max_k_over_m_ = std::max(max_k_over_m_, node_stiffness_[n] / m.mass[n]);
         node_stiffness_[n] = 0.0;
       }
+  }
+}
+
+void BodyContact::append_springs(const Model& m, std::vector<ContactSpring>& out) const {
+  for (std::size_t q = 0; q < pairs_.size(); ++q) {
+    const PairOutcome& r = results_[q];
+    if (!r.touching || !(r.stiffness > 0.0)) continue;
+    const Vec3 fb(r.normal_force_b[0], r.normal_force_b[1], r.normal_force_b[2]);
+    const double N = fb.norm();
+    if (!(N > 0.0)) continue;
+    const Vec3 n = fb / N;
+    ContactSpring c;
+    c.count = 8;
+    c.k = r.stiffness;
+    const auto& ta = m.contact_tets[pairs_[q].i];
+    const auto& tb = m.contact_tets[pairs_[q].j];
+    for (int k = 0; k < 4; ++k) {
+      c.node[k] = ta[k];
+      c.node[4 + k] = tb[k];
+      c.weight[k] = Vec3(r.force[3 * k], r.force[3 * k + 1], r.force[3 * k + 2]).dot(n) / N;
+      c.weight[4 + k] =
+          Vec3(r.force[12 + 3 * k], r.force[13 + 3 * k], r.force[14 + 3 * k]).dot(n) / N;
+    }
+    out.push_back(c);
   }
 }
 

@@ -11,6 +11,7 @@
 
 #include "contact/penalty_wall_law.hpp"
 #include "engine/contact_patch.hpp"
+#include "engine/stable_step/highest_frequency.hpp"
 #include "engine/model.hpp"
 
 namespace femdem {
@@ -31,6 +32,10 @@ class ContactModel {
   // The stable step with this contact's stiffness, given the elements' bound dt_element and
   // the bound so far.
   virtual double stable_step(const Model& m, double dt_element, double dt) = 0;
+  // Appends the springs this contact adds to the model's stiffness now, for the assembled
+  // stable-step estimate (engine/stable_step/highest_frequency.hpp): the same contacts the
+  // bound of stable_step() counts.
+  virtual void append_springs(const Model& m, std::vector<ContactSpring>& out) const = 0;
 };
 
 }  // namespace femdem

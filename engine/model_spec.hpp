@@ -24,6 +24,13 @@ struct SimulationSettings {
   // 0.65 kept it to 6e-5 and 0.5 to 1e-5 (h = 2.5 mm steel sphere at 1 m/s).
   double time_step_safety = 0.5;
   double time_step = 0.0;         // > 0: fixed step (still checked against the stable step)
+  // How the stable step is estimated (engine/stable_step/): `assembled` measures the highest
+  // frequency of the whole model (elements at their current shape and the contact springs) by
+  // Lanczos iterations every stable_step_interval steps, and scales the element-and-contact
+  // bound between estimates by what it found; `element` is that bound alone.
+  enum class StableStep { assembled, element };
+  StableStep stable_step = StableStep::assembled;
+  int stable_step_interval = 100;
   double output_interval = 0.0;   // 0: end_time / 50
   double history_interval = 0.0;  // 0: output_interval / 20
   Vec3 gravity = Vec3::Zero();

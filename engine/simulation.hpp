@@ -4,6 +4,7 @@
 // steps, so kinetic energy and outputs are synchronous with positions), automatic stable step.
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "engine/element_pass.hpp"
 #include "engine/impact_damping.hpp"
 #include "engine/model.hpp"
+#include "engine/stable_step/highest_frequency.hpp"
 #include "engine/wall_contact.hpp"
 #include "materials/material_params.hpp"
 
@@ -71,6 +73,11 @@ class Simulation {
   std::int64_t steps() const { return steps_; }
   double dt() const { return dt_; }                // step that the next step() will take
   double stable_dt() const { return stable_dt_; }  // current stable estimate (before safety)
+  // The element-and-contact bound now, and the assembled estimates made so far (with their
+  // Lanczos iterations in all): `stable_dt() / stable_bound()` is what the estimates gained.
+  double stable_bound() const { return stable_bound_; }
+  std::int64_t frequency_estimates() const { return frequency_estimates_; }
+  std::int64_t frequency_iterations() const { return frequency_iterations_; }
 
   Energies energies() const;
   // (energies().balance() - its initial value) / max(initial total, largest energy seen)
@@ -99,6 +106,8 @@ class Simulation {
   // advances the material state and updates energies and element steps
   void compute_forces(double step_dt);
   void set_time_step();
+  // The assembled estimate's step given the element-and-contact bound (re-estimating when due).
+  double assembled_step(double bound);
   // Selective mass scaling: raises the mass of elements whose stable step is below
   // `element_dt_needed` (conserving nodal momentum once the run has started).
   void scale_masses(double element_dt_needed);
@@ -145,6 +154,12 @@ class Simulation {
   std::int64_t steps_ = 0;
   double dt_ = 0.0;
   double stable_dt_ = 0.0;
+  // the assembled stable-step estimate (settings.stable_step == assembled; empty otherwise):
+  // the bound at the last estimate and the ratio estimate / bound it found
+  std::optional<HighestFrequency> frequency_;
+  std::vector<ContactSpring> springs_;
+  double stable_bound_ = 0.0, bound_at_estimate_ = 0.0, step_ratio_ = 1.0;
+  std::int64_t estimate_step_ = 0, frequency_estimates_ = 0, frequency_iterations_ = 0;
   std::vector<double> accel_;             // 3 per node
   std::vector<double> elem_force_;        // 30 per element
   std::vector<double> elem_energy_;       // per element

@@ -6,6 +6,18 @@
 #include <stdexcept>
 
 namespace femdem {
+namespace {
+
+// The spring of a node near a wall (within the depth of the element behind it: it may touch
+// within the step), or 0 when it is farther.
+double near_wall_stiffness(const Model& m, const SurfaceNode& s, const Wall& w) {
+  const Vec3 p(m.x[3 * s.node], m.x[3 * s.node + 1], m.x[3 * s.node + 2]);
+  if ((p - w.point).dot(w.normal) > s.depth) return 0.0;
+  return w.penalty_factor * m.materials[m.bodies[s.body].material].youngs_modulus * s.area /
+         s.depth;
+}
+
+}  // namespace
 
 WallContact::WallContact(const Model& m, bool collect_patches)
     : active_(!m.walls.empty()), collect_patches_(collect_patches) {
@@ -84,24 +96,24 @@ void WallContact::append_patches(std::vector<ContactPatch>& out) const {
 }
 
 double WallContact::stable_step(const Model& m, double dt_element, double dt) {
+  damping_factor_ = 1.0;
+  driven_wall_step_ = HUGE_VAL;
   if (!active_) return dt;
   // A wall adds a spring k to boundary nodes near it; bound the node's frequency by the
   // element's plus the spring's (omega^2 <= omega_e^2 + k/m).
   const double omega_el = 2.0 / dt_element;
   std::fill(stiffness_.begin(), stiffness_.end(), 0.0);
   for (const SurfaceNode& s : m.surface) {
-    const Body& b = m.bodies[s.body];
-    if (b.fixed) continue;
-    const Vec3 p(m.x[3 * s.node], m.x[3 * s.node + 1], m.x[3 * s.node + 2]);
+    if (m.bodies[s.body].fixed) continue;
     for (std::size_t wi = 0; wi < m.walls.size(); ++wi) {
-      const Wall& w = m.walls[wi];
-      if ((p - w.point).dot(w.normal) > s.depth) continue;
-      const double k = w.penalty_factor * m.materials[b.material].youngs_modulus * s.area / s.depth;
+      const double k = near_wall_stiffness(m, s, m.walls[wi]);
+      if (!(k > 0.0)) continue;
       stiffness_[wi] += k;
       // a damping ratio xi shrinks the stable step by sqrt(1 + xi^2) - xi
-      const double xi = w.damping;
-      dt = std::min(dt, 2.0 * (std::sqrt(1.0 + xi * xi) - xi) /
-                            std::sqrt(omega_el * omega_el + k / m.mass[s.node]));
+      const double xi = m.walls[wi].damping;
+      const double shrink = std::sqrt(1.0 + xi * xi) - xi;
+      damping_factor_ = std::min(damping_factor_, shrink);
+      dt = std::min(dt, 2.0 * shrink / std::sqrt(omega_el * omega_el + k / m.mass[s.node]));
     }
   }
   // A force-driven wall is a mass on the contact springs of every node near it (in parallel):
@@ -109,8 +121,26 @@ double WallContact::stable_step(const Model& m, double dt_element, double dt) {
   // node's side.)
   for (std::size_t wi = 0; wi < m.walls.size(); ++wi)
     if (m.walls[wi].force_driven() && stiffness_[wi] > 0.0)
-      dt = std::min(dt, 2.0 / std::sqrt(stiffness_[wi] / m.walls[wi].mass));
-  return dt;
+      driven_wall_step_ =
+          std::min(driven_wall_step_, 2.0 / std::sqrt(stiffness_[wi] / m.walls[wi].mass));
+  return std::min(dt, driven_wall_step_);
+}
+
+void WallContact::append_springs(const Model& m, std::vector<ContactSpring>& out) const {
+  if (!active_) return;
+  for (const SurfaceNode& s : m.surface) {
+    if (m.bodies[s.body].fixed) continue;
+    for (const Wall& w : m.walls) {
+      const double k = near_wall_stiffness(m, s, w);
+      if (!(k > 0.0)) continue;
+      ContactSpring c;
+      c.node[0] = s.node;
+      c.weight[0] = 1.0;
+      c.count = 1;
+      c.k = k;
+      out.push_back(c);
+    }
+  }
 }
 
 }  // namespace femdem

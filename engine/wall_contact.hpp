@@ -6,6 +6,7 @@
 // the friction spring of each (node, wall), the per-(body, wall) patches for impact damping, and
 // each wall's contact stiffness for the step of force-driven walls. Serial in node order: the sums
 // are deterministic.
+#include <cmath>
 #include <vector>
 
 #include "contact/contact_laws.hpp"
@@ -23,6 +24,13 @@ class WallContact final : public ContactModel {
   // Per node near a wall (within one element depth) the element's frequency plus the spring's,
   // with the dashpot's shrink factor; and each force-driven wall's own frequency on the springs.
   double stable_step(const Model& m, double dt_element, double dt) override;
+  // Every node within an element depth of a wall, with its spring (as stable_step counts them).
+  void append_springs(const Model& m, std::vector<ContactSpring>& out) const override;
+  // What the walls' dashpots and the force-driven walls' own frequency allow, from the last
+  // stable_step(): the factor sqrt(1 + xi^2) - xi of the most damped wall with a node near it,
+  // and the step of the stiffest force-driven wall on its springs (HUGE_VAL: none).
+  double damping_factor() const { return damping_factor_; }
+  double driven_wall_step() const { return driven_wall_step_; }
 
  private:
   template <class Law>
@@ -35,6 +43,7 @@ class WallContact final : public ContactModel {
   std::vector<double> stick_;
   std::vector<ContactPatch> patches_;  // per (body, wall), body-major
   std::vector<double> stiffness_;      // per wall: the contact stiffness near it
+  double damping_factor_ = 1.0, driven_wall_step_ = HUGE_VAL;
 };
 
 }  // namespace femdem

@@ -17,7 +17,7 @@ void Reader::read_simulation(const toml::table& root, ModelSpec& spec, toml::tab
              {"end_time", "time_step_safety", "time_step", "output_interval", "history_interval",
               "gravity", "threads", "bulk_viscosity_linear", "bulk_viscosity_quadratic",
               "mass_scaling_time_step", "mass_scaling_limit", "deformation_damping",
-              "rest_kinetic_fraction", "rest_hold_time"});
+              "rest_kinetic_fraction", "rest_hold_time", "stable_step", "stable_step_interval"});
   SimulationSettings& s = spec.simulation;
   s.end_time = positive(t, "end_time", p, std::nullopt, &t);
   s.time_step_safety = positive(t, "time_step_safety", p, s.time_step_safety, &t);
@@ -26,6 +26,22 @@ void Reader::read_simulation(const toml::table& root, ModelSpec& spec, toml::tab
          "must be in (0, 1] (a fraction of the stable time step), got " +
              format_number(s.time_step_safety));
   s.time_step = positive(t, "time_step", p, 0.0, &t);
+  if (const auto v = opt_string(t, "stable_step", p)) {
+    if (*v == "assembled")
+      s.stable_step = SimulationSettings::StableStep::assembled;
+    else if (*v == "element")
+      s.stable_step = SimulationSettings::StableStep::element;
+    else
+      fail(t.get("stable_step"), "simulation.stable_step",
+           "must be \"assembled\" (the whole model's highest frequency, measured) or "
+           "\"element\" (the element-by-element bound), got \"" + *v + "\"");
+  }
+  if (auto n = opt_integer(t, "stable_step_interval", p)) {
+    if (*n < 1 || *n > 1000000)
+      fail(t.get("stable_step_interval"), "simulation.stable_step_interval",
+           "must be a number of steps in [1, 1000000], got " + std::to_string(*n));
+    s.stable_step_interval = static_cast<int>(*n);
+  }
   s.output_interval = positive(t, "output_interval", p, s.end_time / 50.0, &t);
   s.history_interval = positive(t, "history_interval", p, s.output_interval / 20.0, &t);
   if (auto g = opt_vec3(t, "gravity", p)) s.gravity = *g;
@@ -85,6 +101,9 @@ void Reader::read_simulation(const toml::table& root, ModelSpec& spec, toml::tab
   out.insert_or_assign("end_time", s.end_time);
   out.insert_or_assign("time_step_safety", s.time_step_safety);
   if (s.time_step > 0.0) out.insert_or_assign("time_step", s.time_step);
+  const bool assembled = s.stable_step == SimulationSettings::StableStep::assembled;
+  out.insert_or_assign("stable_step", assembled ? "assembled" : "element");
+  if (assembled) out.insert_or_assign("stable_step_interval", s.stable_step_interval);
   out.insert_or_assign("output_interval", s.output_interval);
   out.insert_or_assign("history_interval", s.history_interval);
   out.insert_or_assign("gravity", toml::array{s.gravity.x(), s.gravity.y(), s.gravity.z()});
