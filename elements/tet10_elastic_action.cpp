@@ -26,15 +26,10 @@ bool tet10_elastic_action(const double* x, const double* dNdX, const double* w, 
       return false;
     }
     // F^-1 (row-major) = cofactor' / J
-    const double Fi[9] = {c00 / J,
-                          (F[2] * F[7] - F[1] * F[8]) / J,
-                          (F[1] * F[5] - F[2] * F[4]) / J,
-                          c01 / J,
-                          (F[0] * F[8] - F[2] * F[6]) / J,
-                          (F[2] * F[3] - F[0] * F[5]) / J,
-                          c02 / J,
-                          (F[1] * F[6] - F[0] * F[7]) / J,
-                          (F[0] * F[4] - F[1] * F[3]) / J};
+    const double Fi[9] = {
+        c00 / J, (F[2] * F[7] - F[1] * F[8]) / J, (F[1] * F[5] - F[2] * F[4]) / J,
+        c01 / J, (F[0] * F[8] - F[2] * F[6]) / J, (F[2] * F[3] - F[0] * F[5]) / J,
+        c02 / J, (F[1] * F[6] - F[0] * F[7]) / J, (F[0] * F[4] - F[1] * F[3]) / J};
     // the gradient over the current shape, L = H F^-1, its strain and stress
     double L[9];
     for (int i = 0; i < 3; ++i)
@@ -50,8 +45,8 @@ bool tet10_elastic_action(const double* x, const double* dNdX, const double* w, 
     double P[9];
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j)
-        P[3 * i + j] =
-            dv * (s[3 * i] * Fi[3 * j] + s[3 * i + 1] * Fi[3 * j + 1] + s[3 * i + 2] * Fi[3 * j + 2]);
+        P[3 * i + j] = dv * (s[3 * i] * Fi[3 * j] + s[3 * i + 1] * Fi[3 * j + 1] +
+                             s[3 * i + 2] * Fi[3 * j + 2]);
     for (int a = 0; a < 10; ++a)
       for (int i = 0; i < 3; ++i)
         f[3 * a + i] +=

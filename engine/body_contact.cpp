@@ -166,7 +166,7 @@ void BodyContact::compute(const Model& m, double step_dt, std::vector<double>& f
     node_positions_[q] = Vec3(m.x[3 * n], m.x[3 * n + 1], m.x[3 * n + 2]);
   }
   if (verlet_.needs_rebuild(node_positions_)) update_candidates(m);
-  max_k_over_m_ = predict_ ? near_k_over_m_ : 0.0;
+  max_k_over_m_ = near_k_over_m_;
 
   std::visit([&]<class Law>(const Law&) { evaluate_pairs<Law>(m, step_dt); }, law_);
 
@@ -226,6 +226,23 @@ void BodyContact::append_springs(const Model& m, std::vector<ContactSpring>& out
     }
     out.push_back(c);
   }
+  node_mark_.assign(m.node_count, 0);
+  for (std::size_t q = 0; q < pairs_.size(); ++q)
+    if (results_[q].touching)
+      for (std::uint32_t t : {pairs_[q].i, pairs_[q].j})
+        for (std::int32_t n : m.contact_tets[t]) node_mark_[n] = 1;
+  for (const Pair& p : pairs_)
+    for (std::uint32_t t : {p.i, p.j})
+      for (std::int32_t n : m.contact_tets[t]) {
+        if (node_mark_[n] || !(node_contact_stiffness_[n] > 0.0) || held(m, n)) continue;
+        node_mark_[n] = 1;
+        ContactSpring c;
+        c.count = 1;
+        c.node[0] = n;
+        c.weight[0] = 1.0;
+        c.k = node_contact_stiffness_[n];
+        out.push_back(c);
+      }
 }
 
 }  // namespace femdem

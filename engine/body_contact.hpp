@@ -52,13 +52,11 @@ class BodyContact final : public ContactModel {
     return std::min(dt, 2.0 / std::sqrt(omega_el * omega_el + max_k_over_m_));
   }
 
-  // Touching pairs as springs on their 8 corners, for the assembled estimate: stiffness twice
-  // the pair's secant (the bound's), weights the corners' shares of the normal force.
+  // What the bound counts, as springs, for the assembled estimate: each touching pair on its 8
+  // corners (stiffness twice its secant, the corners weighted by their shares of the normal
+  // force), and every other node of a candidate pair with the flat-contact stiffness it would
+  // have from its first touch.
   void append_springs(const Model& m, std::vector<ContactSpring>& out) const override;
-  // Whether the bound counts, for the nodes of every candidate pair, the stiffness a flat
-  // contact would give them (on by default; the assembled estimate turns it off and measures
-  // the touching pairs instead, re-estimating as soon as they stiffen the bound).
-  void predict_from_candidates(bool on) { predict_ = on; }
 
   double energy() const { return energy_; }          // stored now (potential + springs)
   double dissipated() const { return dissipated_; }  // by friction in the last compute()
@@ -109,8 +107,8 @@ class BodyContact final : public ContactModel {
   // both sides rise by 4 / h across their elements): counted for the stable step as soon as the
   // node's sub-tets are candidates, because a flat contact is that stiff from its first touch.
   std::vector<double> node_contact_stiffness_;
-  double near_k_over_m_ = 0.0;  // largest over the nodes of candidate pairs
-  bool predict_ = true;
+  double near_k_over_m_ = 0.0;           // largest over the nodes of candidate pairs
+  mutable std::vector<char> node_mark_;  // scratch of append_springs, per model node
   double energy_ = 0.0, dissipated_ = 0.0, max_k_over_m_ = 0.0, max_penetration_ = 0.0;
   std::size_t touching_ = 0;
   bool collect_patches_ = false;

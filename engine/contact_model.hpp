@@ -11,8 +11,8 @@
 
 #include "contact/penalty_wall_law.hpp"
 #include "engine/contact_patch.hpp"
-#include "engine/stable_step/highest_frequency.hpp"
 #include "engine/model.hpp"
+#include "engine/stable_step/highest_frequency.hpp"
 
 namespace femdem {
 

@@ -73,7 +73,6 @@ Simulation::Simulation(Model model)
   body_added_mass_.assign(model_.bodies.size(), 0.0);
   if (model_.settings.stable_step == SimulationSettings::StableStep::assembled) {
     frequency_.emplace(model_);
-    body_contact_.predict_from_candidates(false);
   }
   if (model_.settings.mass_scaling_time_step > 0.0) elem_mass_scale_.assign(ne, 1.0);
   elem_scratch_.assign(ne, 0.0);
@@ -383,8 +382,8 @@ double Simulation::assembled_step(double bound) {
   if (frequency_estimates_ == 0 || since >= m.settings.stable_step_interval ||
       (moved && since >= kMinGap)) {
     springs_.clear();
-    for (const ContactModel* c : std::initializer_list<const ContactModel*>{&wall_contact_,
-                                                                          &body_contact_})
+    for (const ContactModel* c :
+         std::initializer_list<const ContactModel*>{&wall_contact_, &body_contact_})
       if (c->active()) c->append_springs(m, springs_);
     const FrequencyEstimate est = frequency_->estimate(m, springs_);
     ++frequency_estimates_;

@@ -58,8 +58,8 @@ void HighestFrequency::apply_stiffness(const Model& m, const std::vector<Contact
         ue[3 * a + k] = u[3 * c[a] + k];
       }
     const int mat = m.element_material[e];
-    tet10_elastic_action(xe, m.dNdX.data() + 120 * es, m.gauss_weight.data() + 4 * es,
-                         lambda_[mat], shear_[mat], ue, element_force_.data() + 30 * es);
+    tet10_elastic_action(xe, m.dNdX.data() + 120 * es, m.gauss_weight.data() + 4 * es, lambda_[mat],
+                         shear_[mat], ue, element_force_.data() + 30 * es);
   }
   // gather in the fixed CSR order: the same bits for any thread count
 #pragma omp parallel for schedule(static) if (nn > kParallelMinNodes)
@@ -92,8 +92,8 @@ void HighestFrequency::apply(const Model& m, const std::vector<ContactSpring>& s
 
 double HighestFrequency::dot(const double* a, const double* b) {
   return ordered_sum(
-      static_cast<std::int64_t>(inv_sqrt_mass_.size()),
-      [&](std::int64_t i) { return a[i] * b[i]; }, sum_scratch_);
+      static_cast<std::int64_t>(inv_sqrt_mass_.size()), [&](std::int64_t i) { return a[i] * b[i]; },
+      sum_scratch_);
 }
 
 FrequencyEstimate HighestFrequency::estimate(const Model& m,
@@ -115,7 +115,8 @@ FrequencyEstimate HighestFrequency::estimate(const Model& m,
   // elsewhere) is in the start too: Lanczos brings a small component of the top mode up fast
   for (std::size_t i = 0; i < n; ++i)
     if (inv_sqrt_mass_[i] > 0.0)
-      v_[i] = (norm > 0.0 ? v_[i] / norm : 0.0) + kFreshShare * start_entry(i) / std::sqrt(n / 12.0);
+      v_[i] =
+          (norm > 0.0 ? v_[i] / norm : 0.0) + kFreshShare * start_entry(i) / std::sqrt(n / 12.0);
   norm = std::sqrt(dot(v_.data(), v_.data()));
   if (!(norm > 0.0)) return out;  // nothing moves
   for (double& a : v_) a /= norm;

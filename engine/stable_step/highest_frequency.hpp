@@ -35,10 +35,10 @@ struct ContactSpring {
 };
 
 struct FrequencyEstimate {
-  double omega = 0.0;     // rad/s, the estimate (Ritz value + residual), 0 when nothing moves
-  double ritz = 0.0;      // rad/s, the Ritz value alone (a lower bound of the true one)
-  int iterations = 0;     // Lanczos steps (each one application of K)
-  bool converged = false; // residual below the tolerance within the iteration limit
+  double omega = 0.0;      // rad/s, the estimate (Ritz value + residual), 0 when nothing moves
+  double ritz = 0.0;       // rad/s, the Ritz value alone (a lower bound of the true one)
+  int iterations = 0;      // Lanczos steps (each one application of K)
+  bool converged = false;  // residual below the tolerance within the iteration limit
 };
 
 class HighestFrequency {
@@ -54,8 +54,7 @@ class HighestFrequency {
                        double* f);
 
  private:
-  void apply(const Model& m, const std::vector<ContactSpring>& springs, const double* v,
-             double* y);
+  void apply(const Model& m, const std::vector<ContactSpring>& springs, const double* v, double* y);
   double dot(const double* a, const double* b);
 
   int max_iterations_;

@@ -34,7 +34,8 @@ void Reader::read_simulation(const toml::table& root, ModelSpec& spec, toml::tab
     else
       fail(t.get("stable_step"), "simulation.stable_step",
            "must be \"assembled\" (the whole model's highest frequency, measured) or "
-           "\"element\" (the element-by-element bound), got \"" + *v + "\"");
+           "\"element\" (the element-by-element bound), got \"" +
+               *v + "\"");
   }
   if (auto n = opt_integer(t, "stable_step_interval", p)) {
     if (*n < 1 || *n > 1000000)

@@ -74,8 +74,8 @@ TEST(HighestFrequency, OneElementMatchesTheElementEigenproblem) {
   Model m = build_model(spec);
   const MaterialParams& mat = m.materials[0];
   const double vol = m.gauss_weight[0] + m.gauss_weight[1] + m.gauss_weight[2] + m.gauss_weight[3];
-  const double exact = tet10_max_frequency(m.dNdX.data(), m.gauss_weight.data(),
-                                           mat.density * vol, mat.lame_lambda(), mat.shear_modulus());
+  const double exact = tet10_max_frequency(m.dNdX.data(), m.gauss_weight.data(), mat.density * vol,
+                                           mat.lame_lambda(), mat.shear_modulus());
   HighestFrequency hf(m, 40, 1e-10);
   const FrequencyEstimate est = hf.estimate(m, {});
   EXPECT_TRUE(est.converged);

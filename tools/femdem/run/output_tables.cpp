@@ -144,6 +144,9 @@ bool always(const RunRecord&) {
 bool resting(const RunRecord& r) {
   return r.rest.enabled();
 }
+bool assembled(const RunRecord& r) {
+  return r.sim.model().settings.stable_step == SimulationSettings::StableStep::assembled;
+}
 bool body_contact(const RunRecord& r) {
   return r.sim.body_contact().active();
 }
@@ -162,6 +165,19 @@ constexpr SummaryKey kSummaryKeys[] = {
      }},
     {"stable_time_step", "s", "the stable step estimate at the end", "always", always,
      [](const RunRecord& r) { return r.sim.stable_dt(); }},
+    {"stable_time_step_bound", "s",
+     "the element-and-contact bound at the end: `stable_time_step` over it is what the assembled "
+     "estimate gained",
+     "always", always, [](const RunRecord& r) { return r.sim.stable_bound(); }},
+    {"stable_step_estimates", "-",
+     "assembled estimates of the highest frequency made (Lanczos, `simulation.stable_step`)",
+     "`simulation.stable_step` = \"assembled\"", assembled,
+     [](const RunRecord& r) { return static_cast<double>(r.sim.frequency_estimates()); }},
+    {"stable_step_iterations", "-",
+     "their Lanczos iterations in all, each one application of the stiffness (about the cost of "
+     "an elastic element pass)",
+     "`simulation.stable_step` = \"assembled\"", assembled,
+     [](const RunRecord& r) { return static_cast<double>(r.sim.frequency_iterations()); }},
     {"rest_kinetic_fraction", "-", "the scene's threshold, so that tools need not read the scene",
      "`simulation.rest_kinetic_fraction` > 0", resting,
      [](const RunRecord& r) { return r.rest.fraction(); }},
