@@ -6,6 +6,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "engine/element_gather.hpp"
 #include "engine/element_kernel.hpp"
 #include "engine/errors.hpp"
 #include "engine/ordered_sum.hpp"
@@ -175,16 +176,7 @@ void Simulation::compute_forces(double step_dt) {
   }
 
   // 2. gather per node in the fixed CSR order: same bits for any thread count
-#pragma omp parallel for schedule(static) if (nn > kParallelMinNodes)
-  for (std::int32_t n = 0; n < nn; ++n) {
-    double f[3] = {0.0, 0.0, 0.0};
-    for (std::int32_t s = m.node_elem_offset[n]; s < m.node_elem_offset[n + 1]; ++s) {
-      const std::int32_t slot = m.node_elem_slot[s];
-      const double* fe = elem_force_.data() + 3 * static_cast<std::size_t>(slot);
-      f[0] += fe[0], f[1] += fe[1], f[2] += fe[2];
-    }
-    for (int k = 0; k < 3; ++k) m.f_int[3 * n + k] = f[k];
-  }
+  gather_element_forces(m, elem_force_.data(), m.f_int.data());
 
   if (first_bad < ne) {
     const Body& b = m.bodies[m.element_body[first_bad]];

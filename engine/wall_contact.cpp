@@ -10,8 +10,7 @@ namespace {
 
 // The spring of a node near a wall (within the depth of the element behind it: it may touch
 // within the step), or 0 when it is farther.
-double near_wall_stiffness(const Model& m, const SurfaceNode& s, const Wall& w) {
-  const Vec3 p(m.x[3 * s.node], m.x[3 * s.node + 1], m.x[3 * s.node + 2]);
+double near_wall_stiffness(const Model& m, const SurfaceNode& s, const Vec3& p, const Wall& w) {
   if ((p - w.point).dot(w.normal) > s.depth) return 0.0;
   return w.penalty_factor * m.materials[m.bodies[s.body].material].youngs_modulus * s.area /
          s.depth;
@@ -105,8 +104,9 @@ double WallContact::stable_step(const Model& m, double dt_element, double dt) {
   std::fill(stiffness_.begin(), stiffness_.end(), 0.0);
   for (const SurfaceNode& s : m.surface) {
     if (m.bodies[s.body].fixed) continue;
+    const Vec3 p(m.x[3 * s.node], m.x[3 * s.node + 1], m.x[3 * s.node + 2]);
     for (std::size_t wi = 0; wi < m.walls.size(); ++wi) {
-      const double k = near_wall_stiffness(m, s, m.walls[wi]);
+      const double k = near_wall_stiffness(m, s, p, m.walls[wi]);
       if (!(k > 0.0)) continue;
       stiffness_[wi] += k;
       // a damping ratio xi shrinks the stable step by sqrt(1 + xi^2) - xi
@@ -130,8 +130,9 @@ void WallContact::append_springs(const Model& m, std::vector<ContactSpring>& out
   if (!active_) return;
   for (const SurfaceNode& s : m.surface) {
     if (m.bodies[s.body].fixed) continue;
+    const Vec3 p(m.x[3 * s.node], m.x[3 * s.node + 1], m.x[3 * s.node + 2]);
     for (const Wall& w : m.walls) {
-      const double k = near_wall_stiffness(m, s, w);
+      const double k = near_wall_stiffness(m, s, p, w);
       if (!(k > 0.0)) continue;
       ContactSpring c;
       c.node[0] = s.node;

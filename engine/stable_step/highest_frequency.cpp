@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "elements/tet10_elastic_action.hpp"
+#include "engine/element_gather.hpp"
 #include "engine/ordered_sum.hpp"
 #include "engine/parallel_threshold.hpp"
 
@@ -45,7 +46,7 @@ HighestFrequency::HighestFrequency(const Model& m, int max_iterations, double to
 
 void HighestFrequency::apply_stiffness(const Model& m, const std::vector<ContactSpring>& springs,
                                        const double* u, double* f) {
-  const std::int32_t ne = m.element_count, nn = m.node_count;
+  const std::int32_t ne = m.element_count;
   const double* x = m.x.data();
 #pragma omp parallel for schedule(static) if (ne > kParallelMinElements)
   for (std::int32_t e = 0; e < ne; ++e) {
@@ -61,16 +62,7 @@ void HighestFrequency::apply_stiffness(const Model& m, const std::vector<Contact
     tet10_elastic_action(xe, m.dNdX.data() + 120 * es, m.gauss_weight.data() + 4 * es, lambda_[mat],
                          shear_[mat], ue, element_force_.data() + 30 * es);
   }
-  // gather in the fixed CSR order: the same bits for any thread count
-#pragma omp parallel for schedule(static) if (nn > kParallelMinNodes)
-  for (std::int32_t n = 0; n < nn; ++n) {
-    double s[3] = {0.0, 0.0, 0.0};
-    for (std::int32_t k = m.node_elem_offset[n]; k < m.node_elem_offset[n + 1]; ++k) {
-      const double* fe = element_force_.data() + 3 * static_cast<std::size_t>(m.node_elem_slot[k]);
-      s[0] += fe[0], s[1] += fe[1], s[2] += fe[2];
-    }
-    for (int k = 0; k < 3; ++k) f[3 * n + k] = s[k];
-  }
+  gather_element_forces(m, element_force_.data(), f);
   for (const ContactSpring& sp : springs) {
     double d[3] = {0.0, 0.0, 0.0};
     for (int c = 0; c < sp.count; ++c)

@@ -355,6 +355,9 @@ def main():
     ap.add_argument("--femdem", default=os.path.join(ROOT, "build", "femdem"))
     ap.add_argument("--ccx", default="ccx")
     ap.add_argument("--end-time", type=float, default=80e-6)
+    ap.add_argument("--increment-only", action="store_true",
+                    help="run ccx for one increment only and print its Courant increment and the "
+                         "increments the whole end time takes (a fixed increment)")
     ap.add_argument("--reuse", action="store_true",
                     help="reuse finished runs found in the output folder instead of running again")
     args = ap.parse_args()
@@ -386,6 +389,11 @@ def main():
         print(f"[calculix_taylor] node order check: ccx EVOL min {check['min_volume_ccx']:.3e} m^3, "
               f"largest relative difference to this script's TET10 volumes {check['max_rel_volume_difference']:.1e}",
               flush=True)
+    if args.increment_only:
+        dt = tc_short["courant_dt"]
+        print(f"[calculix_taylor] ccx Courant increment {dt:.4e} s: {args.end_time / dt:.0f} "
+              f"increments for {1e6 * args.end_time:g} us", flush=True)
+        return
     print(f"[calculix_taylor] running ccx for {1e6 * args.end_time:g} us ...", flush=True)
     tc = run_ccx(args.ccx, X, conn, os.path.join(out, "ccx"), args.end_time, reuse=args.reuse)
     rc = ccx_results(os.path.join(out, "ccx"), n_nodes, n_elems)
