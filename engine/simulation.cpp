@@ -278,7 +278,7 @@ std::string Simulation::advice() const {
   return a.str();
 }
 
-void Simulation::scale_masses(double element_dt_needed) {
+bool Simulation::scale_masses(double element_dt_needed) {
   Model& m = model_;
   const bool conserve_momentum = steps_ > 0;
   std::int32_t worst = -1;  // the element that needed the most mass this time
@@ -317,10 +317,10 @@ void Simulation::scale_masses(double element_dt_needed) {
   // At the start the mesh is what the user gave (the run log reports the added mass); later,
   // a body gaining a large share of its mass has an element being crushed flat, whose nodes
   // would carry a huge mass (and gravity on it) while the run still looks balanced.
-  if (!conserve_momentum || worst < 0) return;
+  if (!conserve_momentum || worst < 0) return worst >= 0;
   const Body& b = m.bodies[m.element_body[worst]];
   const double added = body_added_mass_[m.element_body[worst]];
-  if (added <= m.settings.mass_scaling_limit * b.mass) return;
+  if (added <= m.settings.mass_scaling_limit * b.mass) return true;
   std::ostringstream msg;
   msg << "mass scaling has added " << added << " kg to body '" << b.name << "' ("
       << 100.0 * added / b.mass << " % of its mass, more than simulation.mass_scaling_limit = "
@@ -332,10 +332,8 @@ void Simulation::scale_masses(double element_dt_needed) {
   throw InstabilityError(msg.str());
 }
 
-void Simulation::set_time_step() {
+double Simulation::element_and_contact_bound() {
   const Model& m = model_;
-  if (!elem_mass_scale_.empty())
-    scale_masses(m.settings.mass_scaling_time_step / m.settings.time_step_safety);
   // (min is exact: the same bits whatever the threads)
   double dt_el = HUGE_VAL;
   const auto ne = static_cast<std::int64_t>(elem_dt_.size());
@@ -350,13 +348,38 @@ void Simulation::set_time_step() {
   double dt = dt_el;
   for (ContactModel* c : std::initializer_list<ContactModel*>{&wall_contact_, &body_contact_})
     if (c->active()) dt = c->stable_step(m, dt_el, dt);
-  stable_bound_ = dt;
-  if (frequency_) dt = assembled_step(dt);
-  stable_dt_ = dt;
-  dt_ = m.settings.time_step > 0.0 ? m.settings.time_step : m.settings.time_step_safety * dt;
+  return dt;
 }
 
-double Simulation::assembled_step(double bound) {
+void Simulation::set_time_step() {
+  const SimulationSettings& s = model_.settings;
+  const bool scaling = !elem_mass_scale_.empty();
+  // With the assembled estimate the step is step_ratio_ times the bound, so mass scaling aims
+  // the bound at the requested step over that ratio: the first estimate is made on the masses
+  // as given, so that the mass added is what the requested step needs, not what the element
+  // bound alone would ask for.
+  if (frequency_ && frequency_estimates_ == 0 && scaling)
+    assembled_step(element_and_contact_bound(), true);
+  bool added =
+      scaling && scale_masses(s.mass_scaling_time_step / (s.time_step_safety * step_ratio_));
+  double dt = stable_bound_ = element_and_contact_bound();
+  if (frequency_) {
+    dt = assembled_step(stable_bound_, added && steps_ == 0);
+    // A new estimate may have found a smaller ratio: scale again to it and re-estimate (the
+    // masses moved), a few passes at most, so that the step holds the requested one.
+    for (int pass = 0;
+         scaling && pass < 3 && s.time_step_safety * dt < s.mass_scaling_time_step * (1.0 - 1e-9);
+         ++pass) {
+      added = scale_masses(s.mass_scaling_time_step / (s.time_step_safety * step_ratio_));
+      if (!added) break;
+      dt = assembled_step(stable_bound_ = element_and_contact_bound(), true);
+    }
+  }
+  stable_dt_ = dt;
+  dt_ = s.time_step > 0.0 ? s.time_step : s.time_step_safety * dt;
+}
+
+double Simulation::assembled_step(double bound, bool force) {
   const Model& m = model_;
   // Between estimates the bound follows the elements' shapes and the contacts every step; the
   // step keeps the ratio to it that the last estimate measured. A bound that has moved by more
@@ -371,7 +394,7 @@ double Simulation::assembled_step(double bound) {
   constexpr double kMaxRatio = 10.0;
   const std::int64_t since = steps_ - estimate_step_;
   const bool moved = !(std::fabs(bound / bound_at_estimate_ - 1.0) <= kRecheck);
-  if (frequency_estimates_ == 0 || since >= m.settings.stable_step_interval ||
+  if (force || frequency_estimates_ == 0 || since >= m.settings.stable_step_interval ||
       (moved && since >= kMinGap)) {
     springs_.clear();
     for (const ContactModel* c :

@@ -106,11 +106,15 @@ class Simulation {
   // advances the material state and updates energies and element steps
   void compute_forces(double step_dt);
   void set_time_step();
-  // The assembled estimate's step given the element-and-contact bound (re-estimating when due).
-  double assembled_step(double bound);
+  // The smallest element step bound (with the mass scaling) lowered by the contacts' springs.
+  double element_and_contact_bound();
+  // The assembled estimate's step given the element-and-contact bound (re-estimating when due,
+  // or now if `force`).
+  double assembled_step(double bound, bool force = false);
   // Selective mass scaling: raises the mass of elements whose stable step is below
-  // `element_dt_needed` (conserving nodal momentum once the run has started).
-  void scale_masses(double element_dt_needed);
+  // `element_dt_needed` (conserving nodal momentum once the run has started); true if it added
+  // mass.
+  bool scale_masses(double element_dt_needed);
   std::string advice() const;  // what to change when the run diverges
   // Adds the deformation damping force of every free body to f_int; returns its dissipation
   // rate (W, >= 0).
