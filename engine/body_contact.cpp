@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "engine/body_contact.hpp"
 
+#include "engine/contact_stiffness.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -50,11 +52,10 @@ BodyContact::BodyContact(const Model& m) : verlet_(buffer_for(m)) {
   boxes_.resize(m.contact_tets.size());
   groups_.assign(m.contact_tet_body.begin(), m.contact_tet_body.end());
   node_stiffness_.assign(m.node_count, 0.0);
-  double e_max = 0.0;
-  for (const Body& b : m.bodies) e_max = std::max(e_max, m.materials[b.material].youngs_modulus);
+  node_flat_stiffness_per_penalty_.assign(m.node_count, 0.0);
   node_contact_stiffness_.assign(m.node_count, 0.0);
   for (const SurfaceNode& s : m.surface)
-    node_contact_stiffness_[s.node] = 16.0 * m.contact.penalty_factor * e_max * s.area / s.depth;
+    node_flat_stiffness_per_penalty_[s.node] = 16.0 * s.area / s.depth;
 }
 
 void BodyContact::update_candidates(const Model& m) {
@@ -83,9 +84,7 @@ void BodyContact::update_candidates(const Model& m) {
     Pair p;
     p.i = c.i;
     p.j = c.j;
-    p.penalty =
-        m.contact.penalty_factor * std::max(m.materials[m.bodies[ba].material].youngs_modulus,
-                                            m.materials[m.bodies[bb].material].youngs_modulus);
+    p.penalty = pair_penalty(m, ba, bb);
     p.friction = m.contact.friction_between(ba, bb);
     while (o < old_pairs_.size() &&
            (old_pairs_[o].i < c.i || (old_pairs_[o].i == c.i && old_pairs_[o].j < c.j)))
@@ -95,6 +94,15 @@ void BodyContact::update_candidates(const Model& m) {
     }
     pairs_.push_back(p);
   }
+  // each candidate node's flat-contact stiffness, with the stiffest penalty of its pairs
+  for (const Pair& p : old_pairs_)
+    for (std::uint32_t t : {p.i, p.j})
+      for (std::int32_t n : m.contact_tets[t]) node_contact_stiffness_[n] = 0.0;
+  for (const Pair& p : pairs_)
+    for (std::uint32_t t : {p.i, p.j})
+      for (std::int32_t n : m.contact_tets[t])
+        node_contact_stiffness_[n] = std::max(node_contact_stiffness_[n],
+                                              p.penalty * node_flat_stiffness_per_penalty_[n]);
   near_k_over_m_ = 0.0;
   for (const Pair& p : pairs_)
     for (std::uint32_t t : {p.i, p.j})
@@ -158,7 +166,7 @@ void BodyContact::gather_patches(const Model& m) {
 }
 
 void BodyContact::compute(const Model& m, double step_dt, std::vector<double>& f) {
-  energy_ = dissipated_ = max_penetration_ = 0.0;
+  energy_ = dissipated_ = max_penetration_ = max_penetration_per_size_ = 0.0;
   touching_ = 0;
   if (!active_) return;
   for (std::size_t q = 0; q < nodes_.size(); ++q) {
@@ -178,6 +186,9 @@ void BodyContact::compute(const Model& m, double step_dt, std::vector<double>& f
     ++touching_;
     energy_ += r.energy;
     max_penetration_ = std::max(max_penetration_, r.penetration);
+    max_penetration_per_size_ = std::max(
+        max_penetration_per_size_, r.penetration / std::min(m.contact_tet_depth[pairs_[q].i],
+                                                            m.contact_tet_depth[pairs_[q].j]));
     const auto& ta = m.contact_tets[pairs_[q].i];
     const auto& tb = m.contact_tets[pairs_[q].j];
     for (int c = 0; c < 4; ++c)

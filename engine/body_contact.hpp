@@ -62,6 +62,9 @@ class BodyContact final : public ContactModel {
   double dissipated() const { return dissipated_; }  // by friction in the last compute()
   // Largest overlap depth 2 E / N over the pairs touching in the last compute() (0: none).
   double max_penetration() const { return max_penetration_; }
+  // Largest over the same pairs of the depth over the element size (the thinner of the two
+  // elements' depths behind their boundary faces, Model::contact_tet_depth).
+  double max_penetration_per_size() const { return max_penetration_per_size_; }
   // Largest over nodes of (sum of the contact stiffness on the node) / (its mass): the stable
   // step bound adds it to the element frequency squared.
   double max_stiffness_over_mass() const { return max_k_over_m_; }
@@ -106,10 +109,12 @@ class BodyContact final : public ContactModel {
   // Per boundary node, the stiffness a flat contact would give it (8 p A / h: the potentials of
   // both sides rise by 4 / h across their elements): counted for the stable step as soon as the
   // node's sub-tets are candidates, because a flat contact is that stiff from its first touch.
-  std::vector<double> node_contact_stiffness_;
+  // (16 A / h per node, times the penalty of the stiffest candidate pair the node is in.)
+  std::vector<double> node_flat_stiffness_per_penalty_, node_contact_stiffness_;
   double near_k_over_m_ = 0.0;           // largest over the nodes of candidate pairs
   mutable std::vector<char> node_mark_;  // scratch of append_springs, per model node
-  double energy_ = 0.0, dissipated_ = 0.0, max_k_over_m_ = 0.0, max_penetration_ = 0.0;
+  double energy_ = 0.0, dissipated_ = 0.0, max_k_over_m_ = 0.0, max_penetration_ = 0.0,
+         max_penetration_per_size_ = 0.0;
   std::size_t touching_ = 0;
   bool collect_patches_ = false;
   std::vector<ContactPatch> patches_;

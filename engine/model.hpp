@@ -39,9 +39,9 @@ struct Wall {
   // velocities are measured against; equals `velocity` for a wall moving steadily.
   Vec3 step_velocity = Vec3::Zero();
   double friction = 0.0;
-  double penalty_factor = 100.0;
-  double damping = 0.0;       // fraction of critical damping of each node's contact spring
-  Vec3 force = Vec3::Zero();  // force the bodies exert on the wall, last step
+  double penalty_factor = 0.0;  // 0: automatic (engine/contact_stiffness.hpp)
+  double damping = 0.0;         // fraction of critical damping of each node's contact spring
+  Vec3 force = Vec3::Zero();    // force the bodies exert on the wall, last step
   // Force-driven wall (WallSpec::force_history non-empty): mass, and its acceleration along the
   // normal at the last force evaluation. `velocity` is then its whole-step velocity.
   std::vector<ForcePoint> force_history;
@@ -60,7 +60,8 @@ struct Wall {
 };
 
 // Per boundary node of a body that can touch walls: its share of the surface area and the depth
-// of the element behind it; the wall penalty stiffness is penalty_factor * E * area / depth.
+// of the element behind it; the wall penalty stiffness is wall_modulus * area / depth
+// (engine/contact_stiffness.hpp).
 struct SurfaceNode {
   std::int32_t node = 0;
   std::int32_t body = 0;
@@ -125,6 +126,9 @@ struct Model {
   // 4 triangles a 6-node boundary face splits into. Global node ids, body per sub-tet.
   std::vector<std::array<std::int32_t, 4>> contact_tets;
   std::vector<std::int32_t> contact_tet_body;
+  // Per contact sub-tet, the depth of its element behind the boundary face (3V/A, reference
+  // configuration): the element size overlaps are reported against.
+  std::vector<double> contact_tet_depth;
   // Smallest edge of a contact sub-tet in the reference configuration: sets the broadphase
   // buffer.
   double contact_tet_min_edge = 0.0;

@@ -209,6 +209,7 @@ void add_boundary(Model& m, std::int32_t bi, Body& body) {
                                   m.conn.begin() + elem0 + body.element_count);
   const auto faces = boundary_faces(global_elems);
   std::map<std::int32_t, std::pair<double, double>> node_area_depth;  // node -> (area, depth)
+  std::map<std::int32_t, double> element_depth;  // element -> its least boundary-face depth
   for (const auto& f : faces) {
     const Tet10& el = global_elems[f.element];
     const auto& fl = kTet10Faces[f.face];
@@ -219,6 +220,8 @@ void add_boundary(Model& m, std::int32_t bi, Body& body) {
     const double area = 0.5 * (P(fl[1]) - P(fl[0])).cross(P(fl[2]) - P(fl[0])).norm();
     const double v6 = (P(1) - P(0)).dot((P(2) - P(0)).cross(P(3) - P(0)));
     const double depth = v6 / (2.0 * area);
+    const auto [at, fresh] = element_depth.try_emplace(f.element, depth);
+    if (!fresh) at->second = std::min(at->second, depth);
     for (int k = 0; k < 6; ++k) {
       auto& ad = node_area_depth.try_emplace(el[fl[k]], 0.0, HUGE_VAL).first->second;
       ad.first += area * (k < 3 ? 1.0 / 19.0 : 16.0 / 57.0);
@@ -254,6 +257,7 @@ void add_boundary(Model& m, std::int32_t bi, Body& body) {
         }
       m.contact_tets.push_back(t);
       m.contact_tet_body.push_back(bi);
+      m.contact_tet_depth.push_back(element_depth.at(e));
     }
   }
   for (const auto& [n, ad] : node_area_depth) {
@@ -304,7 +308,10 @@ Wall make_wall(const WallSpec& ws, const ContactSettings& contact) {
   if (!w.velocity_history.empty()) w.velocity = history_velocity(w.velocity_history, 0.0);
   w.step_velocity = w.velocity;
   w.friction = ws.friction;
-  w.penalty_factor = ws.penalty_factor > 0.0 ? ws.penalty_factor : contact.penalty_factor;
+  // (0 in the model: the automatic stiffness)
+  w.penalty_factor = ws.penalty_factor > 0.0   ? ws.penalty_factor
+                     : ws.penalty_factor < 0.0 ? 0.0
+                                               : contact.penalty_factor;
   w.damping = ws.damping;
   w.force_history = ws.force_history;
   w.mass = ws.mass;

@@ -27,11 +27,9 @@ struct SimulationSettings {
   // How the stable step is estimated (engine/stable_step/): `assembled` measures the highest
   // frequency of the whole model (elements at their current shape and the contact springs) by
   // Lanczos iterations every stable_step_interval steps, and scales the element-and-contact
-  // bound between estimates by what it found; `element` is that bound alone (still the default:
-  // with mass scaling and with flat contacts the assembled step is not yet as safe, see
-  // docs/SCENES.md).
+  // bound between estimates by what it found; `element` is that bound alone.
   enum class StableStep { assembled, element };
-  StableStep stable_step = StableStep::element;
+  StableStep stable_step = StableStep::assembled;
   int stable_step_interval = 100;
   double output_interval = 0.0;   // 0: end_time / 50
   double history_interval = 0.0;  // 0: output_interval / 20
@@ -81,7 +79,8 @@ struct WallSpec {
   // `velocity` is ignored.
   std::vector<VelocityPoint> velocity_history;
   double friction = 0.0;
-  double penalty_factor = 0.0;  // 0: ContactSettings::penalty_factor
+  // > 0: this wall's factor; 0: ContactSettings::penalty_factor's; < 0 ("auto"): automatic
+  double penalty_factor = 0.0;
   // Fraction of critical damping of each node's contact spring. 0 keeps contact elastic; a
   // high-speed impact on soft (yielding) material needs some, or the light corner nodes of the
   // impact face bounce off the wall into the body.
@@ -126,8 +125,10 @@ struct ContactSettings {
   // and between bodies and walls.
   std::string_view law = "penalty_potential";
   std::string_view wall_law = "penalty";
-  double penalty_factor = 100.0;  // penalty = factor * E of the stiffer side (the thesis' k = aE)
-  double friction = 0.0;          // Coulomb coefficient between bodies
+  // > 0: penalty = factor * E of the stiffer side (the thesis' k = aE); 0: the automatic
+  // stiffness of engine/contact_stiffness.hpp
+  double penalty_factor = 0.0;
+  double friction = 0.0;  // Coulomb coefficient between bodies
   // Fraction of critical damping of every contact between two bodies or a body and a wall,
   // acting on the bodies' rigid motion (engine/impact_damping.hpp): sets the restitution of an
   // impact, e = exp(-pi xi / sqrt(1 - xi^2)) for a linear contact. 0: elastic impacts.

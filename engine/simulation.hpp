@@ -69,6 +69,7 @@ class Simulation {
   void choose_element_kernel(ElementKernelChoice choice) { element_pass_.choose(choice); }
   const ElementPass& element_pass() const { return element_pass_; }
   const BodyContact& body_contact() const { return body_contact_; }
+  const WallContact& wall_contact() const { return wall_contact_; }
   double time() const { return time_; }
   std::int64_t steps() const { return steps_; }
   double dt() const { return dt_; }                // step that the next step() will take

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "engine/wall_contact.hpp"
 
+#include "engine/contact_stiffness.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -12,8 +14,7 @@ namespace {
 // within the step), or 0 when it is farther.
 double near_wall_stiffness(const Model& m, const SurfaceNode& s, const Vec3& p, const Wall& w) {
   if ((p - w.point).dot(w.normal) > s.depth) return 0.0;
-  return w.penalty_factor * m.materials[m.bodies[s.body].material].youngs_modulus * s.area /
-         s.depth;
+  return wall_modulus(m, w, s.body) * s.area / s.depth;
 }
 
 }  // namespace
@@ -28,11 +29,15 @@ WallContact::WallContact(const Model& m, bool collect_patches)
   for (const Wall& w : m.walls) friction = friction || w.friction > 0.0;
   if (friction) stick_.assign(3 * m.surface.size() * m.walls.size(), 0.0);
   stiffness_.assign(m.walls.size(), 0.0);
+  penetration_.assign(m.walls.size(), 0.0);
+  penetration_per_size_.assign(m.walls.size(), 0.0);
   if (collect_patches_) patches_.assign(m.bodies.size() * m.walls.size(), ContactPatch{});
 }
 
 void WallContact::compute(Model& m, double step_dt, std::vector<double>& f, ContactSums& sums) {
   for (auto& w : m.walls) w.force.setZero();
+  std::fill(penetration_.begin(), penetration_.end(), 0.0);
+  std::fill(penetration_per_size_.begin(), penetration_per_size_.end(), 0.0);
   if (collect_patches_) std::fill(patches_.begin(), patches_.end(), ContactPatch{});
   if (!active_) return;
   std::visit([&]<class Law>(const Law&) { compute_with<Law>(m, step_dt, f, sums); }, law_);
@@ -47,19 +52,20 @@ void WallContact::compute_with(Model& m, double step_dt, std::vector<double>& f,
     const SurfaceNode& s = m.surface[si];
     const Body& b = m.bodies[s.body];
     if (b.fixed) continue;
-    const double E = m.materials[b.material].youngs_modulus;
     const Vec3 p(x[3 * s.node], x[3 * s.node + 1], x[3 * s.node + 2]);
     const Vec3 v(m.v[3 * s.node], m.v[3 * s.node + 1], m.v[3 * s.node + 2]);
     for (std::size_t wi = 0; wi < nw; ++wi) {
       Wall& w = m.walls[wi];
       double* slip = stick_.empty() ? nullptr : stick_.data() + 3 * (si * nw + wi);
-      const double k = w.penalty_factor * E * s.area / s.depth;
+      const double k = wall_modulus(m, w, s.body) * s.area / s.depth;
       const double d = (w.point - p).dot(w.normal);  // penetration depth
       // past the end of a bounded wall (a die's mouth) a node is as free as one in front of it
       if (d <= 0.0 || !w.acts_at(p)) {
         if (slip) Law::release(k, slip, sums);
         continue;
       }
+      penetration_[wi] = std::max(penetration_[wi], d);
+      penetration_per_size_[wi] = std::max(penetration_per_size_[wi], d / s.depth);
       if (collect_patches_) {
         const double fn = k * d;
         ContactPatch& q = patches_[static_cast<std::size_t>(s.body) * nw + wi];

@@ -67,7 +67,9 @@ void Reader::read_compaction(const toml::table& root, ModelSpec& spec, toml::tab
     if (mu < 0.0)
       fail(d.get("friction"), dotted(dp, "friction"),
            "must not be negative, got " + format_number(mu));
-    const double pf = positive(d, "penalty_factor", dp, 0.0, &d);
+    // as a wall's: > 0 its own, 0 the [contact] one, < 0 "auto"
+    const std::optional<double> given = opt_penalty_factor(d, dp);
+    const double pf = !given ? 0.0 : *given > 0.0 ? *given : -1.0;
     const double damping = number(d, "damping", dp, 0.0, &d);
     if (damping < 0.0 || damping > 1.0)
       fail(d.get("damping"), dotted(dp, "damping"),
@@ -114,6 +116,7 @@ void Reader::read_compaction(const toml::table& root, ModelSpec& spec, toml::tab
     od.insert_or_assign("sides", sides);
     od.insert_or_assign("friction", mu);
     if (pf > 0.0) od.insert_or_assign("penalty_factor", pf);
+    if (pf < 0.0) od.insert_or_assign("penalty_factor", "auto");
     od.insert_or_assign("damping", damping);
     if (height) od.insert_or_assign("height", *height);
     od.insert_or_assign("angle", angle);

@@ -105,7 +105,7 @@ void Reader::read_walls(const toml::table& root, ModelSpec& spec, toml::array& o
     if (w.friction < 0.0)
       fail(t.get("friction"), dotted(p, "friction"),
            "must not be negative, got " + format_number(w.friction));
-    w.penalty_factor = positive(t, "penalty_factor", p, 0.0, &t);
+    if (const auto pf = opt_penalty_factor(t, p)) w.penalty_factor = *pf > 0.0 ? *pf : -1.0;
     toml::table o;
     o.insert_or_assign("name", w.name);
     o.insert_or_assign("point", toml::array{w.point.x(), w.point.y(), w.point.z()});
@@ -120,6 +120,7 @@ void Reader::read_walls(const toml::table& root, ModelSpec& spec, toml::array& o
     }
     o.insert_or_assign("friction", w.friction);
     if (w.penalty_factor > 0.0) o.insert_or_assign("penalty_factor", w.penalty_factor);
+    if (w.penalty_factor < 0.0) o.insert_or_assign("penalty_factor", "auto");
     w.damping = number(t, "damping", p, 0.0, &t);
     if (w.damping < 0.0 || w.damping > 1.0)
       fail(t.get("damping"), dotted(p, "damping"),
@@ -274,7 +275,7 @@ void Reader::read_contact(const toml::table& root, ModelSpec& spec, toml::table&
                {"law", "wall_law", "penalty_factor", "friction", "impact_damping", "pairs"});
     c.law = registered_name<BodyPairLaw>(law_name(t, "law", c.law, body_pair_law_names()));
     c.wall_law = registered_name<WallLaw>(law_name(t, "wall_law", c.wall_law, wall_law_names()));
-    c.penalty_factor = positive(t, "penalty_factor", "contact", c.penalty_factor, &t);
+    c.penalty_factor = opt_penalty_factor(t, "contact").value_or(c.penalty_factor);
     c.friction = number(t, "friction", "contact", c.friction, &t);
     if (c.friction < 0.0)
       fail(t.get("friction"), "contact.friction",
@@ -328,7 +329,10 @@ void Reader::read_contact(const toml::table& root, ModelSpec& spec, toml::table&
   }
   out.insert_or_assign("law", std::string(c.law));
   out.insert_or_assign("wall_law", std::string(c.wall_law));
-  out.insert_or_assign("penalty_factor", c.penalty_factor);
+  if (c.penalty_factor > 0.0)
+    out.insert_or_assign("penalty_factor", c.penalty_factor);
+  else
+    out.insert_or_assign("penalty_factor", "auto");
   out.insert_or_assign("friction", c.friction);
   out.insert_or_assign("impact_damping", c.impact_damping);
 }

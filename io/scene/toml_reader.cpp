@@ -189,6 +189,21 @@ std::optional<std::string> Reader::opt_string(const toml::table& t, std::string_
   return n->as_string()->get();
 }
 
+std::optional<double> Reader::opt_penalty_factor(const toml::table& t,
+                                                 const std::string& prefix) const {
+  const toml::node* n = t.get("penalty_factor");
+  if (!n) return std::nullopt;
+  if (const auto* s = n->as_string()) {
+    if (s->get() == "auto") return 0.0;
+    fail(n, dotted(prefix, "penalty_factor"),
+         "expected a positive number or \"auto\", got \"" + s->get() + "\"");
+  }
+  if (!n->is_number())
+    fail(n, dotted(prefix, "penalty_factor"),
+         "expected a positive number or \"auto\", got " + type_name(*n));
+  return positive(t, "penalty_factor", prefix, std::nullopt, &t);
+}
+
 std::string Reader::string(const toml::table& t, std::string_view k, const std::string& prefix,
                            const toml::node* owner) const {
   auto s = opt_string(t, k, prefix);

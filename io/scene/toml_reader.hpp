@@ -79,6 +79,9 @@ class Reader {
                   std::optional<double> def, const toml::node* owner) const;
   std::optional<std::string> opt_string(const toml::table& t, std::string_view k,
                                         const std::string& prefix) const;
+  // `penalty_factor`: a positive number, or "auto" (returned as 0: the automatic stiffness of
+  // engine/contact_stiffness.hpp); nullopt when absent.
+  std::optional<double> opt_penalty_factor(const toml::table& t, const std::string& prefix) const;
   std::string string(const toml::table& t, std::string_view k, const std::string& prefix,
                      const toml::node* owner) const;
   std::optional<Vec3> opt_vec3(const toml::table& t, std::string_view k,

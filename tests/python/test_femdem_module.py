@@ -45,13 +45,13 @@ def history_columns(bodies, walls, contact=False, compaction=False):
         cols += [b + s for s in femdem.history.BODY_SUFFIXES]
     for w in walls:
         cols += [w + s for s in femdem.history.WALL_SUFFIXES]
+    if contact:
+        cols += ["contact.max_penetration", "contact.max_penetration_per_size"]
     if compaction:
         cols += ["compaction." + s for s in (
             "punch_displacement", "punch_force", "punch_pressure", "bottom_force",
             "die_normal_force", "die_axial_force", "radial_pressure", "height", "solid_volume",
             "relative_density", "volume_ratio", "column_strain")]
-    if contact:
-        cols.append("contact.max_penetration")
     return cols
 
 

@@ -18,7 +18,7 @@ TEST(OutputTables, HistoryColumnNamesAndOrder) {
   layout.bodies = {"ball", "plate"};
   layout.walls = {"floor"};
   const auto c = history_columns(layout);
-  ASSERT_EQ(c.size(), 12u + 2u * 11u + 6u);
+  ASSERT_EQ(c.size(), 12u + 2u * 11u + 8u);
   const std::vector<std::string> head = {"time",
                                          "dt",
                                          "kinetic_energy",
@@ -45,16 +45,19 @@ TEST(OutputTables, HistoryColumnNamesAndOrder) {
                                          "ball.max_principal_stress"};
   EXPECT_EQ(std::vector<std::string>(c.begin() + 12, c.begin() + 23), ball);
   EXPECT_EQ(c[23], "plate.com_x");
-  const std::vector<std::string> floor = {"floor.force_x",    "floor.force_y",
-                                          "floor.force_z",    "floor.position_x",
-                                          "floor.position_y", "floor.position_z"};
-  EXPECT_EQ(std::vector<std::string>(c.end() - 6, c.end()), floor);
+  const std::vector<std::string> floor = {
+      "floor.force_x",         "floor.force_y",
+      "floor.force_z",         "floor.position_x",
+      "floor.position_y",      "floor.position_z",
+      "floor.max_penetration", "floor.max_penetration_per_size"};
+  EXPECT_EQ(std::vector<std::string>(c.end() - 8, c.end()), floor);
 
   layout.body_contact = layout.compaction = true;
   const auto all = history_columns(layout);
-  ASSERT_EQ(all.size(), c.size() + 1 + 12);
+  ASSERT_EQ(all.size(), c.size() + 2 + 12);
   EXPECT_EQ(all[c.size()], "contact.max_penetration");
-  EXPECT_EQ(all[c.size() + 1], "compaction.punch_displacement");
+  EXPECT_EQ(all[c.size() + 1], "contact.max_penetration_per_size");
+  EXPECT_EQ(all[c.size() + 2], "compaction.punch_displacement");
   EXPECT_EQ(all.back(), "compaction.column_strain");
 }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "elements/tet_geometry.hpp"
+#include "engine/contact_stiffness.hpp"
 #include "engine/errors.hpp"
 #include "io/strain_path.hpp"
 #include "materials/material_point.hpp"
@@ -13,6 +14,17 @@
 #include "tools/femdem/text_format.hpp"
 
 namespace femdem {
+namespace {
+
+// A penalty factor as the check prints it (0: the automatic stiffness).
+std::string penalty_text(double factor, bool wall) {
+  if (factor > 0.0)
+    return fmt::format("factor {:g} (x E of the {})", factor, wall ? "body" : "stiffer side");
+  return fmt::format("automatic ({:g} x the P-wave modulus of the {})",
+                     wall ? kAutoWallFactor : kAutoPairFactor, wall ? "body" : "softer side");
+}
+
+}  // namespace
 
 // `femdem check`: what the scene builds, without running anything.
 void print_scene_summary(const SceneFile& scene) {
@@ -87,7 +99,7 @@ void print_scene_summary(const SceneFile& scene) {
     fmt::print("Walls ({})\n", m.walls.size());
     for (const auto& w : m.walls) {
       fmt::print(
-          "  {}: point {}, normal {}, {}, friction {:g}, penalty factor {:g}, "
+          "  {}: point {}, normal {}, {}, friction {:g}, penalty {}, "
           "damping {:g}\n",
           w.name, vec(w.point), vec(w.normal),
           w.velocity_history.empty()
@@ -97,7 +109,11 @@ void print_scene_summary(const SceneFile& scene) {
                             w.velocity_history.size(), vec(w.velocity_history.front().velocity),
                             vec(w.velocity_history.back().velocity),
                             w.velocity_history.back().time),
-          w.friction, w.penalty_factor > 0.0 ? w.penalty_factor : m.contact.penalty_factor,
+          w.friction,
+          penalty_text(w.penalty_factor > 0.0   ? w.penalty_factor
+                       : w.penalty_factor < 0.0 ? 0.0
+                                                : m.contact.penalty_factor,
+                       true),
           w.damping);
       if (!w.force_history.empty())
         fmt::print(
@@ -152,7 +168,7 @@ void print_scene_summary(const SceneFile& scene) {
     }
     fmt::print("\n");
   }
-  fmt::print("Contact\n  penalty factor {:g}, friction {:g}", m.contact.penalty_factor,
+  fmt::print("Contact\n  penalty {}, friction {:g}", penalty_text(m.contact.penalty_factor, false),
              m.contact.friction);
   if (m.contact.impact_damping > 0.0)
     fmt::print(", impact damping {:g} (restitution about {:.2f} for a linear contact)",

@@ -138,7 +138,8 @@ fix = ["x", "y"]
   EXPECT_EQ(m.constraints[0].region.kind, femdem::RegionSpec::Kind::All);
   EXPECT_TRUE(m.constraints[0].fix[0] && m.constraints[0].fix[1] && !m.constraints[0].fix[2]);
   EXPECT_FALSE(m.constraints[0].velocity.has_value());
-  EXPECT_DOUBLE_EQ(m.contact.penalty_factor, 100.0);
+  EXPECT_DOUBLE_EQ(m.contact.penalty_factor, 0.0);  // the automatic stiffness
+  EXPECT_NE(s.resolved_toml.find("penalty_factor = \"auto\""), std::string::npos);
   EXPECT_DOUBLE_EQ(m.contact.friction, 0.0);
 
   // The resolved scene holds every default and is itself a valid scene giving the same model.

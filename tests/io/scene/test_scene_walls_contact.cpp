@@ -56,6 +56,8 @@ const std::vector<BadCase> kBadCases = {
   {"region_zero_plane_normal", 19, "fix = [\"z\"]\nregion = { plane_point = [0, 0, 0], plane_normal = [0, 0, 0] }", "", "constraints[0].region.plane_normal", 20, "zero vector"},
   {"region_unknown_key", 19, "fix = [\"z\"]\nregion = { plane_point = [0, 0, 0], plane_normal = [0, 0, 1], tolerence = 1e-9 }", "", "constraints[0].region.tolerence", 20, "did you mean 'tolerance'?"},
   {"contact_negative_penalty", 0, "", "[contact]\npenalty_factor = -1\n", "contact.penalty_factor", 21, "must be positive"},
+  {"contact_penalty_not_a_number", 0, "", "[contact]\npenalty_factor = true\n", "contact.penalty_factor", 21, "expected a positive number or \"auto\", got a boolean"},
+  {"wall_penalty_unknown_word", 16, "normal = [0, 0, 1]\npenalty_factor = \"automatic\"", "", "walls.floor.penalty_factor", 17, "expected a positive number or \"auto\", got \"automatic\""},
   {"contact_unknown_key", 0, "", "[contact]\nfricton = 0.2\n", "contact.fricton", 21, "did you mean 'friction'?"},
   {"contact_unknown_law", 0, "", "[contact]\nlaw = \"penalty_potentail\"\n", "contact.law", 21, "unknown law 'penalty_potentail' (did you mean 'penalty_potential'?); laws: penalty_potential"},
   {"contact_unknown_wall_law", 0, "", "[contact]\nwall_law = \"hertz\"\n", "contact.wall_law", 21, "unknown law 'hertz'"},
@@ -89,6 +91,8 @@ friction = 0.3
   text +=
       "[[walls]]\nname = \"roof\"\npoint = [0, 0, 1]\nnormal = [0, 0, -3]\nfriction = 0.2\n"
       "penalty_factor = 10\nvelocity = [0, 0, -1]\n";
+  // a wall on the automatic stiffness while [contact] sets a factor
+  text += "[[walls]]\nname = \"side\"\nnormal = [1, 0, 0]\npenalty_factor = \"auto\"\n";
   const femdem::SceneFile s = load_scene(write_file(tmp_dir() / "explicit.toml", text));
   const auto& m = s.model;
   EXPECT_EQ(m.title, "base");
@@ -100,7 +104,9 @@ friction = 0.3
   EXPECT_EQ(m.constraints[1].region.kind, femdem::RegionSpec::Kind::Plane);
   EXPECT_EQ(m.constraints[1].region.plane_normal, Vec3(0, 1, 0));
   EXPECT_DOUBLE_EQ(m.constraints[1].region.tolerance, 1e-6);
-  ASSERT_EQ(m.walls.size(), 2u);
+  ASSERT_EQ(m.walls.size(), 3u);
+  EXPECT_LT(m.walls[2].penalty_factor, 0.0);  // "auto", kept apart from "absent"
+  EXPECT_NE(s.resolved_toml.find("penalty_factor = \"auto\""), std::string::npos);
   EXPECT_EQ(m.walls[1].normal, Vec3(0, 0, -1));
   EXPECT_DOUBLE_EQ(m.walls[1].penalty_factor, 10.0);
   EXPECT_DOUBLE_EQ(m.walls[1].friction, 0.2);

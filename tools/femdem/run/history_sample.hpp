@@ -16,8 +16,10 @@ struct BodySample {
 };
 
 struct WallSample {
-  Vec3 force = Vec3::Zero();     // of the bodies on the wall
-  Vec3 position = Vec3::Zero();  // the wall's point
+  Vec3 force = Vec3::Zero();          // of the bodies on the wall
+  Vec3 position = Vec3::Zero();       // the wall's point
+  double penetration = 0.0;           // of its deepest node, m
+  double penetration_per_size = 0.0;  // the largest depth over the node's element depth
 };
 
 struct HistorySample {
@@ -27,6 +29,7 @@ struct HistorySample {
   std::vector<BodySample> bodies;
   std::vector<WallSample> walls;
   std::optional<double> max_penetration;       // when bodies can touch each other
+  double max_penetration_per_size = 0.0;       // of the body pairs
   std::optional<CompactionSample> compaction;  // when the scene has [compaction]
 };
 
@@ -45,8 +48,13 @@ inline void take_sample(const Simulation& sim, HistorySample& s) {
   }
   s.walls.resize(m.walls.size());
   for (std::size_t w = 0; w < m.walls.size(); ++w)
-    s.walls[w] = {sim.wall_force(static_cast<int>(w)), sim.wall_position(static_cast<int>(w))};
-  if (sim.body_contact().active()) s.max_penetration = sim.body_contact().max_penetration();
+    s.walls[w] = {sim.wall_force(static_cast<int>(w)), sim.wall_position(static_cast<int>(w)),
+                  sim.wall_contact().max_penetration(w),
+                  sim.wall_contact().max_penetration_per_size(w)};
+  if (sim.body_contact().active()) {
+    s.max_penetration = sim.body_contact().max_penetration();
+    s.max_penetration_per_size = sim.body_contact().max_penetration_per_size();
+  }
 }
 
 }  // namespace femdem

@@ -77,6 +77,11 @@ constexpr OutputEntry<WallSample> kWallColumns[] = {
      [](const WallSample& w) { return w.position.x(); }},
     {"position_y", "m", "", [](const WallSample& w) { return w.position.y(); }},
     {"position_z", "m", "", [](const WallSample& w) { return w.position.z(); }},
+    {"max_penetration", "m", "depth of the deepest body node behind the wall now",
+     [](const WallSample& w) { return w.penetration; }},
+    {"max_penetration_per_size", "-",
+     "largest depth behind the wall over the depth of the element behind the node",
+     [](const WallSample& w) { return w.penetration_per_size; }},
 };
 
 // When bodies can touch each other.
@@ -86,6 +91,10 @@ constexpr OutputEntry<Run> kContactColumns[] = {
      "sub-tetrahedra, the largest 2E/N (E the pair's penalty energy, N its normal force), the "
      "depth of a flat overlap",
      [](const Run& s) { return s.max_penetration.value_or(0.0); }},
+    {"contact.max_penetration_per_size", "-",
+     "largest overlap over the element size: per touching pair, its depth over the thinner of "
+     "the two elements' depths behind their boundary faces",
+     [](const Run& s) { return s.max_penetration_per_size; }},
 };
 
 // With [compaction]. n is the die axis (the bottom wall's normal, into the powder), A and Π the
@@ -150,6 +159,9 @@ bool assembled(const RunRecord& r) {
 bool body_contact(const RunRecord& r) {
   return r.sim.body_contact().active();
 }
+bool has_walls(const RunRecord& r) {
+  return !r.sim.model().walls.empty();
+}
 
 constexpr SummaryKey kSummaryKeys[] = {
     {"setup_time_s", "s", "wall time to read the scene and build the model", "always", always,
@@ -212,6 +224,24 @@ constexpr SummaryKey kSummaryKeys[] = {
     {"contact_final_max_penetration", "m", "the deepest overlap at the end",
      "bodies can touch each other", body_contact,
      [](const RunRecord& r) { return r.sim.body_contact().max_penetration(); }},
+    {"contact_max_penetration_per_size", "-",
+     "largest `contact.max_penetration_per_size` of the history rows (the run log warns above "
+     "0.1)",
+     "bodies can touch each other", body_contact,
+     [](const RunRecord& r) { return r.peaks.penetration_per_size(); }},
+    {"contact_max_penetration_per_size_time", "s", "when it occurred",
+     "bodies can touch each other", body_contact,
+     [](const RunRecord& r) { return r.peaks.penetration_per_size_time(); }},
+    {"walls_max_penetration", "m", "largest `<wall>.max_penetration` of the history rows",
+     "the scene has walls", has_walls,
+     [](const RunRecord& r) { return r.peaks.wall_penetration(); }},
+    {"walls_max_penetration_per_size", "-",
+     "largest `<wall>.max_penetration_per_size` of the history rows (the run log warns above "
+     "0.1)",
+     "the scene has walls", has_walls,
+     [](const RunRecord& r) { return r.peaks.wall_penetration_per_size(); }},
+    {"walls_max_penetration_per_size_time", "s", "when it occurred", "the scene has walls",
+     has_walls, [](const RunRecord& r) { return r.peaks.wall_penetration_per_size_time(); }},
     {"contact_sub_tet_min_edge", "m",
      "smallest edge of the contact sub-tetrahedra: the scale to compare overlaps with",
      "bodies can touch each other", body_contact,

@@ -157,6 +157,23 @@ void say_outcome(RunLog& log, const Simulation& sim, const RestMonitor& rest, do
   log.say("results in " + out.string() + ": results.xdmf (ParaView), history.csv, summary.json");
 }
 
+void warn_overlap(RunLog& log, const Model& m, const PeakMonitor& peaks) {
+  char buf[400];
+  const bool wall = peaks.wall_penetration_per_size() > peaks.penetration_per_size();
+  const std::string where =
+      wall ? "behind wall '" + m.walls[peaks.wall_penetration_per_size_wall()].name + "'"
+           : std::string("between bodies");
+  std::snprintf(buf, sizeof buf,
+                "warning: an overlap %s reached %.3g of the element size at t = %.4g s (more than "
+                "%.3g): the contact is soft for this load. Set a stiffer penalty_factor (%s), "
+                "refine the contact surfaces, or check the loading.",
+                where.c_str(),
+                wall ? peaks.wall_penetration_per_size() : peaks.penetration_per_size(),
+                wall ? peaks.wall_penetration_per_size_time() : peaks.penetration_per_size_time(),
+                kOverlapWarning, wall ? "walls.<name> or [contact]" : "[contact]");
+  log.say(buf);
+}
+
 void plot_compaction(const std::string& script, const std::filesystem::path& out, RunLog& log) {
   const int code = run_plot_script(script, out, out / "run.log");
   if (code == 0)
@@ -228,6 +245,7 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
       curve->observe(*sample.compaction);
     }
     peaks.observe(sample);
+    if (peaks.overlap_warning_due()) warn_overlap(log, m, peaks);
     rest.observe(sample.time, sample.energies.kinetic);
     history_row(sample, row);
     history.write_row(row);

@@ -3,8 +3,9 @@
 
 The columns are the global ones (`time`, `dt`, the energies), then for every body `BODY.com_x`,
 `BODY.vcom_x`, ..., `BODY.max_principal_stress`, for every wall `WALL.force_x`, ...,
-`WALL.position_z`, then `contact.max_penetration` when bodies can touch each other and the 12
-`compaction.*` columns of a scene with `[compaction]`.
+`WALL.max_penetration_per_size`, then `contact.max_penetration` and
+`contact.max_penetration_per_size` when bodies can touch each other and the 12 `compaction.*`
+columns of a scene with `[compaction]`.
 
 A run that was killed may leave a last line without its line break (a row cut by the kill): it
 is dropped, as is any row with the wrong number of fields, so the file of a run still going or
@@ -28,7 +29,7 @@ BODY_SUFFIXES = (".com_x", ".com_y", ".com_z", ".vcom_x", ".vcom_y", ".vcom_z",
                  ".max_principal_stress")
 #: The columns of one wall, `WALL` + suffix, in order.
 WALL_SUFFIXES = (".force_x", ".force_y", ".force_z", ".position_x", ".position_y",
-                 ".position_z")
+                 ".position_z", ".max_penetration", ".max_penetration_per_size")
 #: The column of the deepest overlap between two bodies (scenes where bodies can touch).
 PENETRATION_COLUMN = "contact.max_penetration"
 #: The prefix of the compaction columns (scenes with `[compaction]`).
