@@ -101,8 +101,8 @@ void BodyContact::update_candidates(const Model& m) {
   for (const Pair& p : pairs_)
     for (std::uint32_t t : {p.i, p.j})
       for (std::int32_t n : m.contact_tets[t])
-        node_contact_stiffness_[n] = std::max(node_contact_stiffness_[n],
-                                              p.penalty * node_flat_stiffness_per_penalty_[n]);
+        node_contact_stiffness_[n] =
+            std::max(node_contact_stiffness_[n], p.penalty * node_flat_stiffness_per_penalty_[n]);
   near_k_over_m_ = 0.0;
   for (const Pair& p : pairs_)
     for (std::uint32_t t : {p.i, p.j})

@@ -358,8 +358,8 @@ void Simulation::set_time_step() {
   // the bound lower by the measured ratio would add less mass, but a global ratio does not say
   // which elements it came from: measured, it fell as the scaled elements caught up, and the
   // rescaling ran away.)
-  const bool added = !elem_mass_scale_.empty() &&
-                     scale_masses(s.mass_scaling_time_step / s.time_step_safety);
+  const bool added =
+      !elem_mass_scale_.empty() && scale_masses(s.mass_scaling_time_step / s.time_step_safety);
   double dt = stable_bound_ = element_and_contact_bound();
   if (frequency_) dt = assembled_step(stable_bound_, added && steps_ == 0);
   stable_dt_ = dt;

@@ -56,8 +56,7 @@ ModelSpec block_under_punch(std::vector<ForcePoint> force, double punch_mass,
 // left to the tolerances.
 double static_displacement(double F, double penalty_factor) {
   const double p_wave = kE * (1 - kNu) / ((1 + kNu) * (1 - 2 * kNu)), h = 0.05;
-  const double walls =
-      penalty_factor > 0.0 ? 0.0 : 2.0 * F * h / (kAutoWallFactor * p_wave * kA);
+  const double walls = penalty_factor > 0.0 ? 0.0 : 2.0 * F * h / (kAutoWallFactor * p_wave * kA);
   return F * kL / (kE * kA) + walls;
 }
 

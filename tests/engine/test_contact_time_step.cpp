@@ -167,9 +167,8 @@ TEST(ContactTimeStep, AutomaticStiffnessKeepsAtLeastHalfTheStepOfTheBodiesAlone)
     std::printf(
         "%s: step of the bodies alone %.4g s, smallest in contact %.4g s (%.2f of it), %lld "
         "steps, energy balance %.2e, peak contact energy %.3g J\n",
-        soft_on_stiff ? "soft on steel" : "steel on steel", dt_alone, r.min_dt,
-        r.min_dt / dt_alone, static_cast<long long>(r.steps), r.max_balance,
-        r.max_contact_energy);
+        soft_on_stiff ? "soft on steel" : "steel on steel", dt_alone, r.min_dt, r.min_dt / dt_alone,
+        static_cast<long long>(r.steps), r.max_balance, r.max_contact_energy);
     EXPECT_GT(r.max_contact_energy, 1e-8);
     EXPECT_GE(r.min_dt, 0.5 * dt_alone);
     if (soft_on_stiff) {

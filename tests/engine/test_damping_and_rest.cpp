@@ -134,8 +134,7 @@ TEST(ContactPenetration, AFlatOverlapReadsAsItsDepth) {
     const Simulation sim(build_model(spec));  // the contact at t = 0, before any step
     const double p = sim.body_contact().max_penetration();
     const double r = sim.body_contact().max_penetration_per_size();
-    std::printf("overlap %.1e m: reported penetration %.6e m, %.6e of the element size\n", d, p,
-                r);
+    std::printf("overlap %.1e m: reported penetration %.6e m, %.6e of the element size\n", d, p, r);
     EXPECT_NEAR(p, d, 0.12 * d);
     EXPECT_NEAR(r, d / a, 0.12 * d / a);
   }

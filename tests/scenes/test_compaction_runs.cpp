@@ -38,7 +38,7 @@ struct Options {
   std::string bottom_motion;
   double end_time = 0.5e-3;
   std::string compaction_extra;
-  double height = 4e-3;       // of the cube (a tablet when below 4 mm)
+  double height = 4e-3;  // of the cube (a tablet when below 4 mm)
   // of every wall. The columns are checked against the continuum answer, so the walls are
   // stiff: with the automatic stiffness the node springs of the two walls would take 17 % of
   // the 2-element cube's shortening (test_compaction.cpp checks that compliance).
