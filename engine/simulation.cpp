@@ -273,7 +273,7 @@ std::string Simulation::advice() const {
   } else {
     a << "The step may be too large for this deformation, or the mesh too coarse or distorted: "
          "lower simulation.time_step_safety (now "
-      << s.time_step_safety << "), refine the mesh, or check the loading and penalty factors.";
+      << s.safety() << "), refine the mesh, or check the loading and penalty factors.";
   }
   return a.str();
 }
@@ -359,11 +359,11 @@ void Simulation::set_time_step() {
   // which elements it came from: measured, it fell as the scaled elements caught up, and the
   // rescaling ran away.)
   const bool added =
-      !elem_mass_scale_.empty() && scale_masses(s.mass_scaling_time_step / s.time_step_safety);
+      !elem_mass_scale_.empty() && scale_masses(s.mass_scaling_time_step / s.safety());
   double dt = stable_bound_ = element_and_contact_bound();
   if (frequency_) dt = assembled_step(stable_bound_, added && steps_ == 0);
   stable_dt_ = dt;
-  dt_ = s.time_step > 0.0 ? s.time_step : s.time_step_safety * dt;
+  dt_ = s.time_step > 0.0 ? s.time_step : s.safety() * dt;
 }
 
 double Simulation::assembled_step(double bound, bool force) {
@@ -387,6 +387,18 @@ double Simulation::assembled_step(double bound, bool force) {
     for (const ContactModel* c :
          std::initializer_list<const ContactModel*>{&wall_contact_, &body_contact_})
       if (c->active()) c->append_springs(m, springs_);
+    // Contact springs are resolved at no more than kContactSafety of their own limit whatever
+    // the safety factor: a penalty switches on within a step and is not smooth, and measured on
+    // flush faces pressed together the energy balance grows from 0.7 % at 0.5 to 2.4 % at 0.8
+    // (tests/engine/test_contact_time_step.cpp). Counting them (safety / kContactSafety)^2
+    // stiffer makes a contact-led mode take the step of kContactSafety, an element-led one the
+    // full safety.
+    constexpr double kContactSafety = 0.5;
+    const double safety = m.settings.safety();
+    const double margin = m.settings.time_step > 0.0
+                              ? 1.0  // a fixed step is checked against the limit itself
+                              : std::max(1.0, safety * safety / (kContactSafety * kContactSafety));
+    for (ContactSpring& sp : springs_) sp.k *= margin;
     const FrequencyEstimate est = frequency_->estimate(m, springs_);
     ++frequency_estimates_;
     frequency_iterations_ += est.iterations;

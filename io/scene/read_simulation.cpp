@@ -100,7 +100,7 @@ void Reader::read_simulation(const toml::table& root, ModelSpec& spec, toml::tab
     fail(t.get("rest_hold_time"), "simulation.rest_hold_time",
          "needs simulation.rest_kinetic_fraction (the stop-at-rest threshold)");
   out.insert_or_assign("end_time", s.end_time);
-  out.insert_or_assign("time_step_safety", s.time_step_safety);
+  out.insert_or_assign("time_step_safety", s.safety());
   if (s.time_step > 0.0) out.insert_or_assign("time_step", s.time_step);
   const bool assembled = s.stable_step == SimulationSettings::StableStep::assembled;
   out.insert_or_assign("stable_step", assembled ? "assembled" : "element");

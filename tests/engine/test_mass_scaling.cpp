@@ -16,11 +16,13 @@ using namespace femdem;
 namespace {
 
 // (The requested step is compared with the element bound's step: mass scaling raises that bound
-// to it, whichever estimate then sets the step.)
+// to it, whichever estimate then sets the step. Both estimates at the element bound's safety
+// 0.5, so that the same request asks the same of the bound.)
 ModelSpec spinning_block(
     SimulationSettings::StableStep estimate = SimulationSettings::StableStep::element) {
   ModelSpec s;
   s.simulation.stable_step = estimate;
+  s.simulation.time_step_safety = SimulationSettings::kElementSafety;
   MaterialParams mat;
   mat.name = "rubbery";
   mat.density = 1000.0;

@@ -132,6 +132,15 @@ double last(const std::vector<double>& v) {
   return v.back();
 }
 
+// The mean of the last n rows: the wall forces ring around their quasi-static trend (+-2 % row to
+// row on the 2-element cube), so a balance read from one row depends on where in the ringing the
+// run ends (measured at the last row: +0.47 % at safety 0.5, +2.55 % at 0.8; over 10 rows +0.17 %).
+double last_mean(const std::vector<double>& v, std::size_t n) {
+  double s = 0.0;
+  for (std::size_t i = v.size() - n; i < v.size(); ++i) s += v[i];
+  return s / static_cast<double>(n);
+}
+
 }  // namespace
 
 // A filled frictionless die: uniaxial strain. With Hencky elasticity the Kirchhoff stresses are
@@ -216,11 +225,13 @@ TEST(CompactionRuns, PunchForceIsBottomPlusDieFriction) {
   o.die_friction = 0.3;
   const RunResult r = run_scene("friction", o);
   const auto& h = r.h;
-  const double Fp = last(h.at("compaction.punch_force")),
-               Fb = last(h.at("compaction.bottom_force")),
-               Fd = last(h.at("compaction.die_axial_force"));
-  std::printf("punch %.4g N, bottom %.4g N, die friction %.4g N: bottom + die %+.2f %% of punch\n",
-              Fp, Fb, Fd, 100 * ((Fb + Fd) / Fp - 1));
+  const double Fp = last_mean(h.at("compaction.punch_force"), 10),
+               Fb = last_mean(h.at("compaction.bottom_force"), 10),
+               Fd = last_mean(h.at("compaction.die_axial_force"), 10);
+  std::printf(
+      "last 10 rows: punch %.4g N, bottom %.4g N, die friction %.4g N: bottom + die %+.2f %% of "
+      "punch\n",
+      Fp, Fb, Fd, 100 * ((Fb + Fd) / Fp - 1));
   EXPECT_GT(Fd, 0.05 * Fp);  // friction matters here
   EXPECT_NEAR((Fb + Fd) / Fp, 1.0, 0.02);
   EXPECT_LT(Fb, Fp);

@@ -18,7 +18,7 @@ namespace {
 const std::string kOptions =
     "--no-plot --threads 1 --set simulation.mass_scaling_time_step=0 "
     "--set bodies.rod.mesh.element_size=1.6e-3 --set simulation.stable_step=assembled "
-    "--set simulation.end_time=40e-6 ";
+    "--set simulation.end_time=40e-6 --set simulation.time_step_safety=0.8 ";
 
 }  // namespace
 
@@ -27,7 +27,7 @@ TEST(StableStep, PlasticImpactIsSharp) {
       femdem::test::run_shipped_scene("taylor_bar.toml", "stable_step/auto", kOptions);
   ASSERT_EQ(automatic.command.code, 0) << automatic.command.output;
   ASSERT_TRUE(automatic.summary.contains("extra"));
-  const double safety = 0.5;  // the default time_step_safety: dt = safety x the estimated limit
+  const double safety = 0.8;  // as set above (the default): dt = safety x the estimated limit
   const auto& dt = automatic.history.at("dt");
   // the smallest step of the run, away from the last (shortened to land on end_time)
   const double smallest_limit = *std::min_element(dt.begin(), dt.end() - 1) / safety;

@@ -113,7 +113,8 @@ fix = ["x", "y"]
   const auto& m = s.model;
   EXPECT_EQ(m.title, "defaults");
   EXPECT_DOUBLE_EQ(m.simulation.end_time, 2e-3);
-  EXPECT_DOUBLE_EQ(m.simulation.time_step_safety, 0.5);
+  EXPECT_DOUBLE_EQ(m.simulation.time_step_safety, 0.0);  // the estimate's default:
+  EXPECT_DOUBLE_EQ(m.simulation.safety(), 0.8);          // 0.8 of the assembled estimate
   EXPECT_DOUBLE_EQ(m.simulation.time_step, 0.0);
   EXPECT_DOUBLE_EQ(m.simulation.output_interval, 2e-3 / 50);
   EXPECT_DOUBLE_EQ(m.simulation.history_interval, 2e-3 / 50 / 20);
