@@ -216,6 +216,7 @@ void BodyContact::compute(const Model& m, double step_dt, std::vector<double>& f
 }
 
 void BodyContact::append_springs(const Model& m, std::vector<ContactSpring>& out) const {
+  const double margin = m.settings.contact_stiffness_margin();
   for (std::size_t q = 0; q < pairs_.size(); ++q) {
     const PairOutcome& r = results_[q];
     if (!r.touching || !(r.stiffness > 0.0)) continue;
@@ -225,7 +226,7 @@ void BodyContact::append_springs(const Model& m, std::vector<ContactSpring>& out
     const Vec3 n = fb / N;
     ContactSpring c;
     c.count = 8;
-    c.k = r.stiffness;
+    c.k = margin * r.stiffness;
     const auto& ta = m.contact_tets[pairs_[q].i];
     const auto& tb = m.contact_tets[pairs_[q].j];
     for (int k = 0; k < 4; ++k) {
@@ -251,7 +252,7 @@ void BodyContact::append_springs(const Model& m, std::vector<ContactSpring>& out
         c.count = 1;
         c.node[0] = n;
         c.weight[0] = 1.0;
-        c.k = node_contact_stiffness_[n];
+        c.k = margin * node_contact_stiffness_[n];
         out.push_back(c);
       }
 }

@@ -45,11 +45,13 @@ class BodyContact final : public ContactModel {
   void append_patches(std::vector<ContactPatch>& out) const override {
     out.insert(out.end(), patches_.begin(), patches_.end());
   }
-  // omega^2 <= omega_element^2 + max over nodes of k / m (see max_stiffness_over_mass).
-  double stable_step(const Model&, double dt_element, double dt) override {
+  // omega^2 <= omega_element^2 + max over nodes of k / m (see max_stiffness_over_mass), the
+  // springs counted with the settings' contact_stiffness_margin().
+  double stable_step(const Model& m, double dt_element, double dt) override {
     if (!(max_k_over_m_ > 0.0)) return dt;
     const double omega_el = 2.0 / dt_element;
-    return std::min(dt, 2.0 / std::sqrt(omega_el * omega_el + max_k_over_m_));
+    const double k_over_m = m.settings.contact_stiffness_margin() * max_k_over_m_;
+    return std::min(dt, 2.0 / std::sqrt(omega_el * omega_el + k_over_m));
   }
 
   // What the bound counts, as springs, for the assembled estimate: each touching pair on its 8

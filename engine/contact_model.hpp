@@ -30,7 +30,9 @@ class ContactModel {
   // Appends the touching patches of the last compute() (for impact damping).
   virtual void append_patches(std::vector<ContactPatch>& out) const = 0;
   // The stable step with this contact's stiffness, given the elements' bound dt_element and
-  // the bound so far.
+  // the bound so far. Both this and append_springs() count each spring
+  // m.settings.contact_stiffness_margin() times stiffer (contact is resolved at a smaller
+  // fraction of its limit than the elements).
   virtual double stable_step(const Model& m, double dt_element, double dt) = 0;
   // Appends the springs this contact adds to the model's stiffness now, for the assembled
   // stable-step estimate (engine/stable_step/highest_frequency.hpp): the same contacts the

@@ -387,18 +387,6 @@ double Simulation::assembled_step(double bound, bool force) {
     for (const ContactModel* c :
          std::initializer_list<const ContactModel*>{&wall_contact_, &body_contact_})
       if (c->active()) c->append_springs(m, springs_);
-    // Contact springs are resolved at no more than kContactSafety of their own limit whatever
-    // the safety factor: a penalty switches on within a step and is not smooth, and measured on
-    // flush faces pressed together the energy balance grows from 0.7 % at 0.5 to 2.4 % at 0.8
-    // (tests/engine/test_contact_time_step.cpp). Counting them (safety / kContactSafety)^2
-    // stiffer makes a contact-led mode take the step of kContactSafety, an element-led one the
-    // full safety.
-    constexpr double kContactSafety = 0.5;
-    const double safety = m.settings.safety();
-    const double margin = m.settings.time_step > 0.0
-                              ? 1.0  // a fixed step is checked against the limit itself
-                              : std::max(1.0, safety * safety / (kContactSafety * kContactSafety));
-    for (ContactSpring& sp : springs_) sp.k *= margin;
     const FrequencyEstimate est = frequency_->estimate(m, springs_);
     ++frequency_estimates_;
     frequency_iterations_ += est.iterations;

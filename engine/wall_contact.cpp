@@ -107,12 +107,13 @@ double WallContact::stable_step(const Model& m, double dt_element, double dt) {
   // A wall adds a spring k to boundary nodes near it; bound the node's frequency by the
   // element's plus the spring's (omega^2 <= omega_e^2 + k/m).
   const double omega_el = 2.0 / dt_element;
+  const double margin = m.settings.contact_stiffness_margin();
   std::fill(stiffness_.begin(), stiffness_.end(), 0.0);
   for (const SurfaceNode& s : m.surface) {
     if (m.bodies[s.body].fixed) continue;
     const Vec3 p(m.x[3 * s.node], m.x[3 * s.node + 1], m.x[3 * s.node + 2]);
     for (std::size_t wi = 0; wi < m.walls.size(); ++wi) {
-      const double k = near_wall_stiffness(m, s, p, m.walls[wi]);
+      const double k = margin * near_wall_stiffness(m, s, p, m.walls[wi]);
       if (!(k > 0.0)) continue;
       stiffness_[wi] += k;
       // a damping ratio xi shrinks the stable step by sqrt(1 + xi^2) - xi
@@ -134,11 +135,12 @@ double WallContact::stable_step(const Model& m, double dt_element, double dt) {
 
 void WallContact::append_springs(const Model& m, std::vector<ContactSpring>& out) const {
   if (!active_) return;
+  const double margin = m.settings.contact_stiffness_margin();
   for (const SurfaceNode& s : m.surface) {
     if (m.bodies[s.body].fixed) continue;
     const Vec3 p(m.x[3 * s.node], m.x[3 * s.node + 1], m.x[3 * s.node + 2]);
     for (const Wall& w : m.walls) {
-      const double k = near_wall_stiffness(m, s, p, w);
+      const double k = margin * near_wall_stiffness(m, s, p, w);
       if (!(k > 0.0)) continue;
       ContactSpring c;
       c.node[0] = s.node;

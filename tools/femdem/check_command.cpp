@@ -38,7 +38,12 @@ void print_scene_summary(const SceneFile& scene) {
   if (s.time_step > 0.0)
     fmt::print("  time step         {:g} s (fixed)\n", s.time_step);
   else
-    fmt::print("  time step         automatic, {:g} x the stable step\n", s.safety());
+    fmt::print("  time step         automatic, {:g} x the stable step ({} estimate){}\n",
+               s.safety(),
+               s.stable_step == SimulationSettings::StableStep::assembled ? "assembled" : "element",
+               s.contact_stiffness_margin() > 1.0
+                   ? fmt::format(", contact springs at {:g}", SimulationSettings::kContactSafety)
+                   : std::string());
   fmt::print("  output interval   {:g} s (about {} frames)\n", s.output_interval,
              static_cast<long long>(std::floor(s.end_time / s.output_interval + 1e-9)) + 1);
   fmt::print("  history interval  {:g} s\n", s.history_interval);
