@@ -14,8 +14,8 @@
 // - with frictionless box walls the lid force equals the floor force once the packing carries
 //   the load quasi-statically (averaged over the last quarter of the run: node-penalty contact
 //   on a coarse mesh makes the force a staircase, see docs/VALIDATION.md section 6).
-// Same material, penalties, mass scaling and lid speed (1 m/s after a 0.1 ms ramp) as the
-// 64-sphere scene, coarse mesh (48 TET10 per sphere).
+// Same material, contact (automatic stiffness, the defaults' step) and lid speed (1 m/s after
+// a 0.1 ms ramp) as the 64-sphere scene, coarse mesh (48 TET10 per sphere).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -40,7 +40,6 @@ const char* const kScene = R"(title = "8 spheres in simple-cubic order"
 end_time = 2.7e-4
 output_interval = 2.7e-4
 history_interval = 2e-6
-mass_scaling_time_step = 1e-8
 [[materials]]
 name = "powder"
 model = "von_mises"
@@ -55,39 +54,32 @@ material = "powder"
 mesh = { generator = "sphere", cells_per_radius = 1 }
 generate = { container = "box", size = [0.005, 0.005, 0.005], arrangement = "simple_cubic", diameter = 2.5e-3, orientation = "random", seed = 1 }
 [contact]
-penalty_factor = 1.0
 friction = 0.15
 [[walls]]
 name = "floor"
 point = [0.0, 0.0, 0.0]
 normal = [0.0, 0.0, 1.0]
-penalty_factor = 3.0
 [[walls]]
 name = "lid"
 point = [0.0, 0.0, 0.005]
 normal = [0.0, 0.0, -1.0]
-penalty_factor = 3.0
 velocity_history = [[0.0, 0.0, 0.0, 0.0], [1e-4, 0.0, 0.0, -1.0]]
 [[walls]]
 name = "x0"
 point = [0.0, 0.0, 0.0]
 normal = [1.0, 0.0, 0.0]
-penalty_factor = 3.0
 [[walls]]
 name = "x1"
 point = [0.005, 0.0, 0.0]
 normal = [-1.0, 0.0, 0.0]
-penalty_factor = 3.0
 [[walls]]
 name = "y0"
 point = [0.0, 0.0, 0.0]
 normal = [0.0, 1.0, 0.0]
-penalty_factor = 3.0
 [[walls]]
 name = "y1"
 point = [0.0, 0.005, 0.0]
 normal = [0.0, -1.0, 0.0]
-penalty_factor = 3.0
 [compaction]
 punch = "lid"
 bottom = "floor"
