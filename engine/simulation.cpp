@@ -72,6 +72,7 @@ Simulation::Simulation(Model model)
   for (std::size_t i = 0; i < 3 * nn; ++i)
     if (model_.dof_mode[i] == 2) driven_dofs_.push_back(i);
   body_added_mass_.assign(model_.bodies.size(), 0.0);
+  body_added_at_start_.assign(model_.bodies.size(), 0.0);
   if (model_.settings.stable_step == SimulationSettings::StableStep::assembled) {
     frequency_.emplace(model_);
   }
@@ -317,12 +318,18 @@ bool Simulation::scale_masses(double element_dt_needed) {
   // At the start the mesh is what the user gave (the run log reports the added mass); later,
   // a body gaining a large share of its mass has an element being crushed flat, whose nodes
   // would carry a huge mass (and gravity on it) while the run still looks balanced.
-  if (!conserve_momentum || worst < 0) return worst >= 0;
-  const Body& b = m.bodies[m.element_body[worst]];
-  const double added = body_added_mass_[m.element_body[worst]];
+  // The limit counts what was added after the start only (docs/SCENES.md).
+  if (!conserve_momentum) {
+    body_added_at_start_ = body_added_mass_;
+    return worst >= 0;
+  }
+  if (worst < 0) return false;
+  const std::int32_t body = m.element_body[worst];
+  const Body& b = m.bodies[body];
+  const double added = body_added_mass_[body] - body_added_at_start_[body];
   if (added <= m.settings.mass_scaling_limit * b.mass) return true;
   std::ostringstream msg;
-  msg << "mass scaling has added " << added << " kg to body '" << b.name << "' ("
+  msg << "mass scaling has added " << added << " kg to body '" << b.name << "' since the start ("
       << 100.0 * added / b.mass << " % of its mass, more than simulation.mass_scaling_limit = "
       << m.settings.mass_scaling_limit << ") at t = " << time_ << " s, step " << steps_
       << ": element " << (worst - b.first_element) << " of the body is being crushed (its own "

@@ -140,8 +140,9 @@ class Simulation {
   double contact_dissipation_ = 0.0;
   double viscous_dissipation_ = 0.0;
   double mass_scaling_dissipation_ = 0.0;
-  std::vector<double> elem_mass_scale_;  // >= 1 per element; empty when mass scaling is off
-  std::vector<double> body_added_mass_;  // per body
+  std::vector<double> elem_mass_scale_;      // >= 1 per element; empty when mass scaling is off
+  std::vector<double> body_added_mass_;      // per body
+  std::vector<double> body_added_at_start_;  // per body: what the scaling before step 1 added
   WallContact wall_contact_;
   BodyContact body_contact_;
   // impact damping (contact.impact_damping > 0): the body-wall patches (per body x wall), all

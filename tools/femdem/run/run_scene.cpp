@@ -5,6 +5,7 @@
 // compaction curve), run_summary.hpp, progress_line.hpp and run_log.hpp.
 #include "tools/femdem/run/run_scene.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -13,6 +14,7 @@
 #include <filesystem>
 #include <optional>
 #include <sstream>
+#include <vector>
 
 #include "engine/compaction.hpp"
 #include "engine/errors.hpp"
@@ -144,13 +146,37 @@ void say_outcome(RunLog& log, const Simulation& sim, const RestMonitor& rest, do
                 100.0 * sim.balance_error());
   log.say(buf);
   if (m.settings.mass_scaling_time_step > 0.0) {
+    // One line in all, then the bodies that gained mass, most first (a packing has hundreds of
+    // bodies, most of which gain none).
+    double added = 0.0, mass = 0.0;
+    struct Gain {
+      double fraction, kg;
+      std::size_t body;
+    };
+    std::vector<Gain> gained;
     for (std::size_t b = 0; b < m.bodies.size(); ++b) {
       const BodyState s = sim.body_motion(static_cast<int>(b));
-      const double fraction = s.added_mass / s.mass;
-      std::snprintf(buf, sizeof buf,
-                    "%smass scaling added %.3g kg to body '%s' (%.3g %% of its mass)",
-                    fraction > 0.01 ? "warning: " : "", s.added_mass, m.bodies[b].name.c_str(),
-                    100.0 * fraction);
+      added += s.added_mass;
+      mass += s.mass;
+      if (s.added_mass > 0.0) gained.push_back({s.added_mass / s.mass, s.added_mass, b});
+    }
+    std::snprintf(buf, sizeof buf,
+                  "mass scaling added %.3g kg (%.3g %% of the mass) to %zu of %zu bodies", added,
+                  mass > 0.0 ? 100.0 * added / mass : 0.0, gained.size(), m.bodies.size());
+    log.say(buf);
+    std::stable_sort(gained.begin(), gained.end(),
+                     [](const Gain& a, const Gain& b) { return a.fraction > b.fraction; });
+    constexpr std::size_t kListed = 10;
+    for (std::size_t i = 0; i < std::min(gained.size(), kListed); ++i) {
+      const Gain& g = gained[i];
+      std::snprintf(buf, sizeof buf, "  body '%s': %.3g kg (%.3g %% of its mass)%s",
+                    m.bodies[g.body].name.c_str(), g.kg, 100.0 * g.fraction,
+                    g.fraction > 0.01 ? " - warning: more than 1 %" : "");
+      log.say(buf);
+    }
+    if (gained.size() > kListed) {
+      std::snprintf(buf, sizeof buf, "  and %zu more bodies (summary.json: bodies.*.added_mass)",
+                    gained.size() - kListed);
       log.say(buf);
     }
   }
