@@ -9,11 +9,16 @@
 #include <cmath>
 #include <random>
 
+#include "contact/tet_potential_integral.hpp"
+#include "support/convex_polyhedron.hpp"
+
 namespace {
 
 using femdem::contact::tet_potential_contact;
+using femdem::contact::tet_potential_contact_with;
 using femdem::contact::TetCorners;
 using femdem::contact::TetPairContact;
+using femdem::test::ConvexPolyhedron;
 using P3 = std::array<double, 3>;
 
 constexpr double kPenalty = 2.0e9;
@@ -321,6 +326,83 @@ TEST(TetPotentialContact, EnergyContinuousAlongAPathThroughTheOtherTet) {
     }
     ASSERT_GT(emax, 0.0);
     EXPECT_LT(worst_gap, 1e-4 * emax) << "path " << path;
+  }
+}
+
+// The kernel (regions clipped into sets of tetrahedra) against the same integral with the
+// regions clipped as polyhedra (tests/support/convex_polyhedron.hpp): two independent ways to
+// the exact integral. Tetrahedra of size L about 1; energies agree to 1e-12 p L^3 and forces to
+// 1e-12 p L^2, and, where the overlap is not a sliver (over 1e-4 L^3), to 1e-12 of the pair's
+// own energy and largest force.
+void expect_same_as_reference(const TetCorners& a, const TetCorners& b, const char* what) {
+  TetPairContact ref, c;
+  const bool touching = tet_potential_contact_with<ConvexPolyhedron>(a, b, kPenalty, ref);
+  EXPECT_EQ(tet_potential_contact(a, b, kPenalty, c), touching) << what;
+  const bool big = ref.overlap_volume > 1e-4;
+  const double fscale = big ? 1e-12 * max_force(ref) : 1e-12 * kPenalty;
+  const double escale = big ? 1e-12 * ref.energy : 1e-12 * kPenalty;
+  EXPECT_NEAR(c.energy, ref.energy, escale) << what;
+  EXPECT_NEAR(c.overlap_volume, ref.overlap_volume, 1e-13) << what;
+  for (int k = 0; k < 4; ++k)
+    for (int d = 0; d < 3; ++d) {
+      EXPECT_NEAR(c.force_a[k][d], ref.force_a[k][d], fscale) << what;
+      EXPECT_NEAR(c.force_b[k][d], ref.force_b[k][d], fscale) << what;
+    }
+}
+
+TEST(TetPotentialContact, EqualsThePolyhedronClippedIntegralOnRandomPairs) {
+  for (const Pair& p : overlapping_pairs(3000, 97)) expect_same_as_reference(p.a, p.b, "deep");
+  // shallow: B moved along a random direction until the overlap is 1e-6 to 2 % of A's volume
+  std::mt19937 rng(101);
+  std::normal_distribution<double> n(0.0, 1.0);
+  int shallow = 0;
+  while (shallow < 2000) {
+    const TetCorners a = random_tet(rng, {0, 0, 0}), b0 = random_tet(rng, {0, 0, 0});
+    P3 dir = {n(rng), n(rng), n(rng)};
+    const double len = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+    const double target = std::pow(10.0, -6.0 + 4.3 * (shallow % 100) / 100.0);
+    double lo = 0.0, hi = 3.0;
+    for (int it = 0; it < 80; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      TetCorners b = b0;
+      for (auto& x : b)
+        for (int d = 0; d < 3; ++d) x[d] += mid * dir[d] / len;
+      TetPairContact c;
+      tet_potential_contact(a, b, kPenalty, c);
+      const double f = c.overlap_volume / std::abs(signed_volume(a));
+      if (f > 0.5 * target && f < 2.0 * target) {
+        expect_same_as_reference(a, b, "shallow");
+        ++shallow;
+        break;
+      }
+      (f > target ? lo : hi) = mid;
+    }
+  }
+}
+
+TEST(TetPotentialContact, EqualsThePolyhedronClippedIntegralInDegenerateContacts) {
+  const TetCorners a = {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+  std::mt19937 rng(5);
+  for (int r = 0; r < 20; ++r) {
+    const auto rot = random_rotation(rng);
+    const P3 s = {0.1 * r, -0.2, 0.3};
+    const auto both = [&](const TetCorners& b, const char* what) {
+      expect_same_as_reference(transform(rot, a, s), transform(rot, b, s), what);
+    };
+    // face on face, touching and pressed 1e-3 into each other
+    both({{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, -1}}}, "face on face, touching");
+    both({{{0, 0, 1e-3}, {1, 0, 1e-3}, {0, 1, 1e-3}, {0, 0, -1}}}, "face on face, pressed");
+    // coplanar faces overlapping in part, pressed
+    both({{{0.3, 0.2, 1e-3}, {1.3, 0.2, 1e-3}, {0.3, 1.2, 1e-3}, {0.3, 0.2, -1}}},
+         "coplanar faces shifted");
+    // edge on edge, crossing at right angles, 1e-3 deep
+    both({{{0.2, -0.5, 1e-3}, {0.2, 0.5, 1e-3}, {0.7, 0, -0.5}, {-0.3, 0, -0.5}}}, "edge on edge");
+    // a vertex pushed 1e-3 into a face, and one exactly on it
+    both({{{0.2, 0.2, 1e-3}, {0.5, 0.5, -1}, {-0.3, 0.6, -1}, {0.4, -0.5, -1}}}, "vertex in face");
+    both({{{0.2, 0.2, 0}, {0.5, 0.5, -1}, {-0.3, 0.6, -1}, {0.4, -0.5, -1}}}, "vertex on face");
+    // identical tetrahedra, and one sharing a corner and an edge direction
+    both(a, "identical");
+    both({{{0, 0, 0}, {0.5, 0, 0}, {0, 0.5, 0}, {0, 0, 0.5}}}, "corner shared");
   }
 }
 

@@ -5,7 +5,10 @@
 //                 is 0.1-2 % of the smaller volume (what contact between bodies looks like)
 //   TetContact/2  apart, boxes disjoint (rejected by the box test)
 //   TetContact/3  apart, boxes overlap (rejected by a face plane or, failing that, by clipping)
-// Reports pairs per second (items_per_second). Run:
+// The second argument is the clipper: 0 the kernel (regions clipped into sets of tetrahedra), 1
+// the same integral with the regions clipped as polyhedra (tests/support/convex_polyhedron.hpp),
+// measured on the same pairs in one run. Reports pairs per second
+// (items_per_second). Run:
 //   build/tools/bench/bench_tet_contact --benchmark_repetitions=3
 //   --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
@@ -16,8 +19,11 @@
 #include <vector>
 
 #include "contact/tet_potential_contact.hpp"
+#include "contact/tet_potential_integral.hpp"
+#include "tests/support/convex_polyhedron.hpp"
 
 using femdem::contact::tet_potential_contact;
+using femdem::contact::tet_potential_contact_with;
 using femdem::contact::TetCorners;
 using femdem::contact::TetPairContact;
 
@@ -103,11 +109,14 @@ std::vector<std::pair<TetCorners, TetCorners>> pairs(int kind) {
 
 void TetContact(benchmark::State& state) {
   const auto in = pairs(static_cast<int>(state.range(0)));
+  const auto kernel = state.range(1) == 0
+                          ? tet_potential_contact
+                          : tet_potential_contact_with<femdem::test::ConvexPolyhedron>;
   double sink = 0.0;
   for (auto _ : state) {
     for (const auto& [a, b] : in) {
       TetPairContact c;
-      tet_potential_contact(a, b, 1.0e9, c);
+      kernel(a, b, 1.0e9, c);
       sink += c.energy + c.force_a[0][0];
     }
     benchmark::DoNotOptimize(sink);
@@ -117,7 +126,10 @@ void TetContact(benchmark::State& state) {
       benchmark::Counter(static_cast<double>(kPool), benchmark::Counter::kIsIterationInvariantRate |
                                                          benchmark::Counter::kInvert);
 }
-BENCHMARK(TetContact)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
+BENCHMARK(TetContact)
+    ->ArgsProduct({{0, 1, 2, 3}, {0, 1}})
+    ->ArgNames({"pairs", "kernel"})
+    ->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 
