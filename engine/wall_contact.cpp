@@ -17,17 +17,31 @@ double near_wall_stiffness(const Model& m, const SurfaceNode& s, const Vec3& p, 
   return wall_modulus(m, w, s.body) * s.area / s.depth;
 }
 
+// The reach's buffer as a fraction of the thinnest element behind a boundary node: larger means
+// fewer rebuilds but more pairs visited every step.
+constexpr double kReachBufferPerDepth = 0.5;
+
+double reach_buffer(const Model& m) {
+  double depth = HUGE_VAL;
+  for (const SurfaceNode& s : m.surface)
+    if (!m.bodies[s.body].fixed) depth = std::min(depth, s.depth);
+  return std::isfinite(depth) && depth > 0.0 ? kReachBufferPerDepth * depth : 1.0;
+}
+
 }  // namespace
 
 WallContact::WallContact(const Model& m, bool collect_patches)
-    : active_(!m.walls.empty()), collect_patches_(collect_patches) {
+    : active_(!m.walls.empty()), collect_patches_(collect_patches), moved_(reach_buffer(m)) {
   const std::optional<WallLaw> law = wall_law_named(m.contact.wall_law);
   if (!law)
     throw std::invalid_argument("unknown wall law '" + std::string(m.contact.wall_law) + "'");
   law_ = *law;
-  bool friction = false;
-  for (const Wall& w : m.walls) friction = friction || w.friction > 0.0;
-  if (friction) stick_.assign(3 * m.surface.size() * m.walls.size(), 0.0);
+  for (const Wall& w : m.walls) friction_ = friction_ || w.friction > 0.0;
+  reach_buffer_ = moved_.buffer();
+  for (std::size_t si = 0; si < m.surface.size(); ++si)
+    if (!m.bodies[m.surface[si].body].fixed) tracked_.push_back(static_cast<std::uint32_t>(si));
+  tracked_positions_.resize(tracked_.size());
+  wall_offset_at_build_.assign(m.walls.size(), 0.0);
   stiffness_.assign(m.walls.size(), 0.0);
   penetration_.assign(m.walls.size(), 0.0);
   penetration_per_size_.assign(m.walls.size(), 0.0);
@@ -40,7 +54,72 @@ void WallContact::compute(Model& m, double step_dt, std::vector<double>& f, Cont
   std::fill(penetration_per_size_.begin(), penetration_per_size_.end(), 0.0);
   if (collect_patches_) std::fill(patches_.begin(), patches_.end(), ContactPatch{});
   if (!active_) return;
-  std::visit([&]<class Law>(const Law&) { compute_with<Law>(m, step_dt, f, sums); }, law_);
+  std::visit(
+      [&]<class Law>(const Law&) {
+        refresh_near<Law>(m);
+        // springs released by a rebuild outside compute() (in stable_step) are booked now
+        sums.friction_dissipated += released_;
+        released_ = 0.0;
+        compute_with<Law>(m, step_dt, f, sums);
+      },
+      law_);
+}
+
+void WallContact::build_near(const Model& m) {
+  std::swap(near_, old_near_);
+  std::swap(stick_, old_stick_);
+  near_.clear();
+  stick_.clear();
+  for (std::size_t wi = 0; wi < m.walls.size(); ++wi)
+    wall_offset_at_build_[wi] = m.walls[wi].point.dot(m.walls[wi].normal);
+  for (std::size_t q = 0; q < tracked_.size(); ++q) {
+    const SurfaceNode& s = m.surface[tracked_[q]];
+    const Vec3& p = tracked_positions_[q];
+    for (std::size_t wi = 0; wi < m.walls.size(); ++wi) {
+      const Wall& w = m.walls[wi];
+      if ((p - w.point).dot(w.normal) > s.depth + reach_buffer_) continue;
+      near_.push_back({tracked_[q], static_cast<std::uint32_t>(wi),
+                       wall_modulus(m, w, s.body) * s.area / s.depth});
+    }
+  }
+  if (friction_) stick_.assign(3 * near_.size(), 0.0);
+  moved_.record(tracked_positions_);
+  ++near_builds_;
+}
+
+template <class Law>
+void WallContact::refresh_near(const Model& m) {
+  for (std::size_t q = 0; q < tracked_.size(); ++q) {
+    const std::int32_t n = m.surface[tracked_[q]].node;
+    tracked_positions_[q] = Vec3(m.x[3 * n], m.x[3 * n + 1], m.x[3 * n + 2]);
+  }
+  double travel = 0.0;
+  for (std::size_t wi = 0; wi < m.walls.size(); ++wi)
+    travel = std::max(
+        travel, std::fabs(m.walls[wi].point.dot(m.walls[wi].normal) - wall_offset_at_build_[wi]));
+  // a node's distance to a wall changes by at most its displacement plus the wall's travel
+  if (moved_.max_displacement(tracked_positions_) + travel <= reach_buffer_) return;
+  build_near(m);
+  if (!friction_) return;
+  // carry each kept pair's friction spring over (both lists are sorted); one that left with
+  // its spring stretched (it cannot have been touching, but the books must close) releases it
+  ContactSums dropped;
+  std::size_t o = 0;
+  for (std::size_t q = 0; q < near_.size(); ++q) {
+    const NearPair& e = near_[q];
+    for (; o < old_near_.size() &&
+           (old_near_[o].surface < e.surface ||
+            (old_near_[o].surface == e.surface && old_near_[o].wall < e.wall));
+         ++o)
+      Law::release(old_near_[o].k, old_stick_.data() + 3 * o, dropped);
+    if (o < old_near_.size() && old_near_[o].surface == e.surface && old_near_[o].wall == e.wall) {
+      for (int c = 0; c < 3; ++c) stick_[3 * q + c] = old_stick_[3 * o + c];
+      ++o;
+    }
+  }
+  for (; o < old_near_.size(); ++o)
+    Law::release(old_near_[o].k, old_stick_.data() + 3 * o, dropped);
+  released_ += dropped.friction_dissipated;
 }
 
 template <class Law>
@@ -48,16 +127,15 @@ void WallContact::compute_with(Model& m, double step_dt, std::vector<double>& f,
                                ContactSums& sums) {
   const double* x = m.x.data();
   const std::size_t nw = m.walls.size();
-  for (std::size_t si = 0; si < m.surface.size(); ++si) {
+  for (std::size_t q = 0; q < near_.size(); ++q) {
+    const std::size_t si = near_[q].surface, wi = near_[q].wall;
     const SurfaceNode& s = m.surface[si];
-    const Body& b = m.bodies[s.body];
-    if (b.fixed) continue;
     const Vec3 p(x[3 * s.node], x[3 * s.node + 1], x[3 * s.node + 2]);
     const Vec3 v(m.v[3 * s.node], m.v[3 * s.node + 1], m.v[3 * s.node + 2]);
-    for (std::size_t wi = 0; wi < nw; ++wi) {
+    {
       Wall& w = m.walls[wi];
-      double* slip = stick_.empty() ? nullptr : stick_.data() + 3 * (si * nw + wi);
-      const double k = wall_modulus(m, w, s.body) * s.area / s.depth;
+      double* slip = stick_.empty() ? nullptr : stick_.data() + 3 * q;
+      const double k = near_[q].k;
       const double d = (w.point - p).dot(w.normal);  // penetration depth
       // past the end of a bounded wall (a die's mouth) a node is as free as one in front of it
       if (d <= 0.0 || !w.acts_at(p)) {
@@ -109,10 +187,12 @@ double WallContact::stable_step(const Model& m, double dt_element, double dt) {
   const double omega_el = 2.0 / dt_element;
   const double margin = m.settings.contact_stiffness_margin();
   std::fill(stiffness_.begin(), stiffness_.end(), 0.0);
-  for (const SurfaceNode& s : m.surface) {
-    if (m.bodies[s.body].fixed) continue;
+  std::visit([&]<class Law>(const Law&) { refresh_near<Law>(m); }, law_);
+  for (const NearPair& e : near_) {
+    const SurfaceNode& s = m.surface[e.surface];
     const Vec3 p(m.x[3 * s.node], m.x[3 * s.node + 1], m.x[3 * s.node + 2]);
-    for (std::size_t wi = 0; wi < m.walls.size(); ++wi) {
+    {
+      const std::size_t wi = e.wall;
       const double k = margin * near_wall_stiffness(m, s, p, m.walls[wi]);
       if (!(k > 0.0)) continue;
       stiffness_[wi] += k;

@@ -6,10 +6,19 @@
 // contact/contact_laws.hpp). Holds the friction spring of each (node, wall), the per-(body, wall)
 // patches for impact damping, each wall's contact stiffness for the step of force-driven walls,
 // and each wall's deepest node. Serial in node order: the sums are deterministic.
+//
+// Only the (node, wall) pairs within reach are visited: a list of those whose node was within
+// its element depth plus a buffer of the wall's plane when the list was built, kept until the
+// nodes' largest displacement plus the walls' largest travel along their normals exceeds the
+// buffer (then a pair off the list may have come within an element depth). The list is sorted
+// by node, then wall, so the sums run in the same order as over all pairs and give the same
+// bits.
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "contact/contact_laws.hpp"
+#include "contact/verlet_buffer.hpp"
 #include "engine/contact_model.hpp"
 
 namespace femdem {
@@ -26,6 +35,9 @@ class WallContact final : public ContactModel {
   double stable_step(const Model& m, double dt_element, double dt) override;
   // Every node within an element depth of a wall, with its spring (as stable_step counts them).
   void append_springs(const Model& m, std::vector<ContactSpring>& out) const override;
+  // The (node, wall) pairs within reach, and how many times that list was built.
+  std::size_t near_pairs() const { return near_.size(); }
+  std::int64_t near_list_builds() const { return near_builds_; }
   // What the walls' dashpots and the force-driven walls' own frequency allow, from the last
   // stable_step(): the factor sqrt(1 + xi^2) - xi of the most damped wall with a node near it,
   // and the step of the stiffest force-driven wall on its springs (HUGE_VAL: none).
@@ -37,14 +49,32 @@ class WallContact final : public ContactModel {
   double driven_wall_step() const { return driven_wall_step_; }
 
  private:
+  struct NearPair {
+    std::uint32_t surface = 0, wall = 0;  // index into Model::surface, Model::walls
+    double k = 0.0;                       // the node's spring on this wall (N/m)
+  };
   template <class Law>
   void compute_with(Model& m, double step_dt, std::vector<double>& f, ContactSums& sums);
+  // Rebuilds the list of pairs within reach when the nodes or walls have moved too far; a pair
+  // that leaves it with its friction spring still stretched releases it (into released_).
+  template <class Law>
+  void refresh_near(const Model& m);
+  void build_near(const Model& m);
 
   WallLaw law_;
   bool active_ = false;
   bool collect_patches_ = false;
-  // Tangential spring stretch (3) per (surface node, wall); empty when no wall has friction.
-  std::vector<double> stick_;
+  bool friction_ = false;
+  std::vector<NearPair> near_, old_near_;
+  // Tangential spring stretch (3) per pair of near_; empty when no wall has friction.
+  std::vector<double> stick_, old_stick_;
+  std::vector<std::uint32_t> tracked_;  // surface nodes of free bodies
+  std::vector<Vec3> tracked_positions_;
+  std::vector<double> wall_offset_at_build_;  // point . normal per wall
+  VerletBuffer moved_;                        // node positions at the last build
+  double reach_buffer_ = 0.0;
+  double released_ = 0.0;  // friction energy released by a rebuild, not yet booked
+  std::int64_t near_builds_ = 0;
   std::vector<ContactPatch> patches_;  // per (body, wall), body-major
   std::vector<double> stiffness_;      // per wall: the contact stiffness near it
   std::vector<double> penetration_, penetration_per_size_;  // per wall, last compute()
