@@ -24,16 +24,18 @@ namespace femdem::contact {
 // Corner coordinates of a linear tetrahedron, any orientation.
 using TetCorners = std::array<std::array<double, 3>, 4>;
 
+// Plain data (no initializers: the kernel writes every field when the pair touches, and a
+// rejected pair, the common case, costs no clearing); TetPairContact c{} is all zeros.
 struct TetPairContact {
-  double energy = 0.0;          // E (J when p is in Pa and lengths in m)
-  TetCorners force_a{};         // -dE/dx at the corners of A (N)
-  TetCorners force_b{};         // -dE/dx at the corners of B; sums to minus the sum over A
-  double overlap_volume = 0.0;  // volume of A n B
-  std::array<double, 3> overlap_centroid{};  // centroid of A n B (where friction acts)
+  double energy;                           // E (J when p is in Pa and lengths in m)
+  TetCorners force_a;                      // -dE/dx at the corners of A (N)
+  TetCorners force_b;                      // -dE/dx at the corners of B; sums to minus A's
+  double overlap_volume;                   // volume of A n B
+  std::array<double, 3> overlap_centroid;  // centroid of A n B (where friction acts)
 };
 
-// Fills `out` for the pair (a, b) with penalty p (Pa). Returns false, with `out` zeroed, when
-// the tetrahedra do not overlap (or either one is degenerate).
+// Fills `out` for the pair (a, b) with penalty p (Pa). Returns false, leaving `out` as it was,
+// when the tetrahedra do not overlap (or either one is degenerate).
 bool tet_potential_contact(const TetCorners& a, const TetCorners& b, double penalty,
                            TetPairContact& out);
 

@@ -14,8 +14,9 @@ namespace {
 // runs but more candidate pairs to reject every step.
 constexpr double kBufferPerEdge = 0.3;
 
-// Below this many candidate pairs a parallel region costs more than it saves.
+// Below this many candidate pairs (contact sub-tets) a parallel region costs more than it saves.
 constexpr std::size_t kParallelMinPairs = 256;
+constexpr std::int64_t kParallelMinTets = 4096;
 
 double buffer_for(const Model& m) {
   return m.contact_tet_min_edge > 0.0 ? kBufferPerEdge * m.contact_tet_min_edge : 1.0;
@@ -50,6 +51,7 @@ BodyContact::BodyContact(const Model& m) : verlet_(buffer_for(m)) {
     if (used[n]) nodes_.push_back(n);
   node_positions_.resize(nodes_.size());
   boxes_.resize(m.contact_tets.size());
+  tet_boxes_.resize(m.contact_tets.size());
   groups_.assign(m.contact_tet_body.begin(), m.contact_tet_body.end());
   node_stiffness_.assign(m.node_count, 0.0);
   node_flat_stiffness_per_penalty_.assign(m.node_count, 0.0);
@@ -112,6 +114,22 @@ void BodyContact::update_candidates(const Model& m) {
   // A pair that drops out of the list is far apart: its spring was released when it stopped
   // touching (evaluate() zeroes it then), so nothing is lost here.
   results_.resize(pairs_.size());
+  evaluated_.assign(pairs_.size(), 0);
+}
+
+void BodyContact::update_tet_boxes(const Model& m) {
+  const auto nt = static_cast<std::int64_t>(m.contact_tets.size());
+#pragma omp parallel for schedule(static) if (nt > kParallelMinTets)
+  for (std::int64_t t = 0; t < nt; ++t) {
+    Aabb& b = tet_boxes_[t];
+    const auto& c = m.contact_tets[t];
+    for (int k = 0; k < 3; ++k) {
+      const double x0 = m.x[3 * c[0] + k], x1 = m.x[3 * c[1] + k], x2 = m.x[3 * c[2] + k],
+                   x3 = m.x[3 * c[3] + k];
+      b.lo[k] = std::min(std::min(x0, x1), std::min(x2, x3));
+      b.hi[k] = std::max(std::max(x0, x1), std::max(x2, x3));
+    }
+  }
 }
 
 template <class Law>
@@ -121,10 +139,22 @@ void BodyContact::evaluate_pairs(const Model& m, double step_dt) {
   in.v = m.v.data();
   in.step_dt = step_dt;
   const auto np = static_cast<std::int64_t>(pairs_.size());
-#pragma omp parallel for schedule(dynamic, 64) if (pairs_.size() > kParallelMinPairs) \
+#pragma omp parallel for schedule(dynamic, 256) if (pairs_.size() > kParallelMinPairs) \
     firstprivate(in)
   for (std::int64_t q = 0; q < np; ++q) {
     Pair& p = pairs_[q];
+    // Most candidates are apart: the kernel's own first test (the corners' boxes overlap, on
+    // the same numbers) on the boxes of this step, without gathering the corners. A pair that
+    // fails it and holds no friction spring has nothing to report.
+    const Aabb& a = tet_boxes_[p.i];
+    const Aabb& b = tet_boxes_[p.j];
+    const bool apart = a.hi[0] <= b.lo[0] || b.hi[0] <= a.lo[0] || a.hi[1] <= b.lo[1] ||
+                       b.hi[1] <= a.lo[1] || a.hi[2] <= b.lo[2] || b.hi[2] <= a.lo[2];
+    if (apart && p.spring.stick[0] == 0.0 && p.spring.stick[1] == 0.0 && p.spring.stick[2] == 0.0) {
+      evaluated_[q] = 0;
+      continue;
+    }
+    evaluated_[q] = 1;
     in.tet_a = m.contact_tets[p.i];
     in.tet_b = m.contact_tets[p.j];
     in.penalty = p.penalty;
@@ -138,7 +168,7 @@ void BodyContact::gather_patches(const Model& m) {
   patches_.clear();
   patch_keys_.clear();
   for (std::size_t q = 0; q < pairs_.size(); ++q) {
-    if (!results_[q].touching) continue;
+    if (!evaluated_[q] || !results_[q].touching) continue;
     std::uint64_t a = static_cast<std::uint32_t>(m.contact_tet_body[pairs_[q].i]);
     std::uint64_t b = static_cast<std::uint32_t>(m.contact_tet_body[pairs_[q].j]);
     patch_keys_.emplace_back(std::min(a, b) << 32 | std::max(a, b), static_cast<std::uint32_t>(q));
@@ -176,10 +206,12 @@ void BodyContact::compute(const Model& m, double step_dt, std::vector<double>& f
   if (verlet_.needs_rebuild(node_positions_)) update_candidates(m);
   max_k_over_m_ = near_k_over_m_;
 
+  update_tet_boxes(m);
   std::visit([&]<class Law>(const Law&) { evaluate_pairs<Law>(m, step_dt); }, law_);
 
   // sum in pair order: the same bits with any number of threads
   for (std::size_t q = 0; q < pairs_.size(); ++q) {
+    if (!evaluated_[q]) continue;
     const PairOutcome& r = results_[q];
     dissipated_ += r.dissipated;
     if (!r.touching) continue;
@@ -205,7 +237,7 @@ void BodyContact::compute(const Model& m, double step_dt, std::vector<double>& f
   touching_evaluations_ += static_cast<std::int64_t>(touching_);
   if (collect_patches_) gather_patches(m);
   for (std::size_t q = 0; q < pairs_.size(); ++q) {
-    if (!results_[q].touching) continue;
+    if (!evaluated_[q] || !results_[q].touching) continue;
     for (const auto* t : {&m.contact_tets[pairs_[q].i], &m.contact_tets[pairs_[q].j]})
       for (std::int32_t n : *t) {
         if (node_stiffness_[n] > 0.0 && m.mass[n] > 0.0 && !held(m, n))
@@ -218,6 +250,7 @@ void BodyContact::compute(const Model& m, double step_dt, std::vector<double>& f
 void BodyContact::append_springs(const Model& m, std::vector<ContactSpring>& out) const {
   const double margin = m.settings.contact_stiffness_margin();
   for (std::size_t q = 0; q < pairs_.size(); ++q) {
+    if (!evaluated_[q]) continue;
     const PairOutcome& r = results_[q];
     if (!r.touching || !(r.stiffness > 0.0)) continue;
     const Vec3 fb(r.normal_force_b[0], r.normal_force_b[1], r.normal_force_b[2]);
@@ -240,7 +273,7 @@ void BodyContact::append_springs(const Model& m, std::vector<ContactSpring>& out
   }
   node_mark_.assign(m.node_count, 0);
   for (std::size_t q = 0; q < pairs_.size(); ++q)
-    if (results_[q].touching)
+    if (evaluated_[q] && results_[q].touching)
       for (std::uint32_t t : {pairs_[q].i, pairs_[q].j})
         for (std::int32_t n : m.contact_tets[t]) node_mark_[n] = 1;
   for (const Pair& p : pairs_)

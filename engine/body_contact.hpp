@@ -91,6 +91,7 @@ class BodyContact final : public ContactModel {
   };
 
   void update_candidates(const Model& m);
+  void update_tet_boxes(const Model& m);
   void gather_patches(const Model& m);
   // Every candidate pair through the law, into results_ (in parallel).
   template <class Law>
@@ -107,6 +108,10 @@ class BodyContact final : public ContactModel {
   std::vector<CandidatePair> found_;
   std::vector<Pair> pairs_, old_pairs_;
   std::vector<PairOutcome> results_;
+  // Per candidate pair, this step: 1 when the law evaluated it (results_ holds its outcome), 0
+  // when its sub-tets' boxes were apart and it had no friction spring (nothing to report).
+  std::vector<std::uint8_t> evaluated_;
+  std::vector<Aabb> tet_boxes_;         // of each contact sub-tet, this step (no margin)
   std::vector<double> node_stiffness_;  // per model node, this step
   // Per boundary node, the stiffness a flat contact would give it (8 p A / h: the potentials of
   // both sides rise by 4 / h across their elements): counted for the stable step as soon as the

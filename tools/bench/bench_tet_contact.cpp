@@ -61,7 +61,7 @@ std::vector<std::pair<TetCorners, TetCorners>> pairs(int kind) {
   std::uniform_real_distribution<double> u(-0.5, 0.5);
   std::normal_distribution<double> n(0.0, 1.0);
   std::vector<std::pair<TetCorners, TetCorners>> out;
-  TetPairContact c;
+  TetPairContact c{};
   while (static_cast<int>(out.size()) < kPool) {
     const TetCorners a = random_tet(rng, 0, 0, 0);
     if (kind == 0) {
@@ -77,6 +77,7 @@ std::vector<std::pair<TetCorners, TetCorners>> pairs(int kind) {
       double lo = 0.0, hi = 3.0;  // overlapping at lo, apart at hi
       for (int it = 0; it < 60; ++it) {
         const double mid = 0.5 * (lo + hi);
+        c = TetPairContact{};
         tet_potential_contact(a, shifted(b0, dir, mid), 1.0, c);
         const double f = c.overlap_volume / vmin;
         if (f >= 1e-3 && f <= 2e-2) {
@@ -115,7 +116,7 @@ void TetContact(benchmark::State& state) {
   double sink = 0.0;
   for (auto _ : state) {
     for (const auto& [a, b] : in) {
-      TetPairContact c;
+      TetPairContact c{};
       kernel(a, b, 1.0e9, c);
       sink += c.energy + c.force_a[0][0];
     }
