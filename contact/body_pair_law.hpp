@@ -15,9 +15,13 @@
 
 namespace femdem {
 
+// A contact sub-tetrahedron's corner positions, gathered by the engine once per step.
+using TetPositions = std::array<std::array<double, 3>, 4>;
+
 // One pair: tetrahedron a of one body, b of the other, read from the model's arrays.
 struct PairInput {
-  const double* x = nullptr;                     // node positions, 3 per node
+  const TetPositions* corners_a = nullptr;  // positions of tet_a's corners, now
+  const TetPositions* corners_b = nullptr;
   const double* v = nullptr;                     // node velocities (half step), 3 per node
   std::array<std::int32_t, 4> tet_a{}, tet_b{};  // corner nodes
   double penalty = 0.0;   // Pa: [contact] penalty_factor x E of the stiffer side

@@ -63,14 +63,10 @@ double pair_stiffness_bound(const contact::TetCorners& a, const contact::TetCorn
 }  // namespace
 
 void PenaltyPotentialLaw::evaluate(const PairInput& in, PairSpring& spring, PairOutcome& out) {
-  contact::TetCorners a, b;
+  const contact::TetCorners& a = *in.corners_a;
+  const contact::TetCorners& b = *in.corners_b;
   const auto& ta = in.tet_a;
   const auto& tb = in.tet_b;
-  for (int c = 0; c < 4; ++c)
-    for (int k = 0; k < 3; ++k) {
-      a[c][k] = in.x[3 * ta[c] + k];
-      b[c][k] = in.x[3 * tb[c] + k];
-    }
   out.energy = out.dissipated = out.stiffness = out.penetration = 0.0;
   contact::TetPairContact o;
   out.touching = contact::tet_potential_contact(a, b, in.penalty, o);

@@ -52,6 +52,7 @@ BodyContact::BodyContact(const Model& m) : verlet_(buffer_for(m)) {
   node_positions_.resize(nodes_.size());
   boxes_.resize(m.contact_tets.size());
   tet_boxes_.resize(m.contact_tets.size());
+  tet_positions_.resize(m.contact_tets.size());
   groups_.assign(m.contact_tet_body.begin(), m.contact_tet_body.end());
   node_stiffness_.assign(m.node_count, 0.0);
   node_flat_stiffness_per_penalty_.assign(m.node_count, 0.0);
@@ -122,12 +123,13 @@ void BodyContact::update_tet_boxes(const Model& m) {
 #pragma omp parallel for schedule(static) if (nt > kParallelMinTets)
   for (std::int64_t t = 0; t < nt; ++t) {
     Aabb& b = tet_boxes_[t];
+    TetPositions& p = tet_positions_[t];
     const auto& c = m.contact_tets[t];
-    for (int k = 0; k < 3; ++k) {
-      const double x0 = m.x[3 * c[0] + k], x1 = m.x[3 * c[1] + k], x2 = m.x[3 * c[2] + k],
-                   x3 = m.x[3 * c[3] + k];
-      b.lo[k] = std::min(std::min(x0, x1), std::min(x2, x3));
-      b.hi[k] = std::max(std::max(x0, x1), std::max(x2, x3));
+    for (int k = 0; k < 4; ++k)
+      for (int d = 0; d < 3; ++d) p[k][d] = m.x[3 * c[k] + d];
+    for (int d = 0; d < 3; ++d) {
+      b.lo[d] = std::min(std::min(p[0][d], p[1][d]), std::min(p[2][d], p[3][d]));
+      b.hi[d] = std::max(std::max(p[0][d], p[1][d]), std::max(p[2][d], p[3][d]));
     }
   }
 }
@@ -135,7 +137,6 @@ void BodyContact::update_tet_boxes(const Model& m) {
 template <class Law>
 void BodyContact::evaluate_pairs(const Model& m, double step_dt) {
   PairInput in;
-  in.x = m.x.data();
   in.v = m.v.data();
   in.step_dt = step_dt;
   const auto np = static_cast<std::int64_t>(pairs_.size());
@@ -154,12 +155,15 @@ void BodyContact::evaluate_pairs(const Model& m, double step_dt) {
       evaluated_[q] = 0;
       continue;
     }
-    evaluated_[q] = 1;
+    in.corners_a = &tet_positions_[p.i];
+    in.corners_b = &tet_positions_[p.j];
     in.tet_a = m.contact_tets[p.i];
     in.tet_b = m.contact_tets[p.j];
     in.penalty = p.penalty;
     in.friction = p.friction;
-    Law::evaluate(in, p.spring, results_[q]);
+    PairOutcome& r = results_[q];
+    Law::evaluate(in, p.spring, r);
+    evaluated_[q] = r.touching || r.dissipated != 0.0;
   }
 }
 

@@ -108,11 +108,14 @@ class BodyContact final : public ContactModel {
   std::vector<CandidatePair> found_;
   std::vector<Pair> pairs_, old_pairs_;
   std::vector<PairOutcome> results_;
-  // Per candidate pair, this step: 1 when the law evaluated it (results_ holds its outcome), 0
-  // when its sub-tets' boxes were apart and it had no friction spring (nothing to report).
+  // Per candidate pair, this step: 1 when it has something to report (touching, or its friction
+  // spring released: results_ holds the outcome), 0 when not (its sub-tets' boxes were apart or
+  // the law found it apart, with no spring to release), so that the serial sums read only
+  // those outcomes.
   std::vector<std::uint8_t> evaluated_;
-  std::vector<Aabb> tet_boxes_;         // of each contact sub-tet, this step (no margin)
-  std::vector<double> node_stiffness_;  // per model node, this step
+  std::vector<Aabb> tet_boxes_;              // of each contact sub-tet, this step (no margin)
+  std::vector<TetPositions> tet_positions_;  // its corners, this step
+  std::vector<double> node_stiffness_;       // per model node, this step
   // Per boundary node, the stiffness a flat contact would give it (8 p A / h: the potentials of
   // both sides rise by 4 / h across their elements): counted for the stable step as soon as the
   // node's sub-tets are candidates, because a flat contact is that stiff from its first touch.
