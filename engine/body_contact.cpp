@@ -28,6 +28,25 @@ bool held(const Model& m, std::int32_t n) {
   return m.dof_mode[3 * n] != 0 && m.dof_mode[3 * n + 1] != 0 && m.dof_mode[3 * n + 2] != 0;
 }
 
+// The gap between two tetrahedra along the line through their centroids (fixed at the call):
+// the lowest corner of b minus the highest of a, projected on the unit axis from a's centroid
+// to b's. While every node moves less than buffer / 2 the gap along that fixed axis shrinks by
+// less than buffer, so a pair with a gap over the buffer cannot touch before the list is
+// rebuilt: the broadphase's boxes of slanted surface tetrahedra overlap far more often.
+double centroid_line_gap(const TetPositions& a, const TetPositions& b) {
+  double axis[3] = {0.0, 0.0, 0.0};
+  for (int k = 0; k < 4; ++k)
+    for (int d = 0; d < 3; ++d) axis[d] += b[k][d] - a[k][d];
+  const double len = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+  if (!(len > 0.0)) return -HUGE_VAL;
+  double a_top = -HUGE_VAL, b_bottom = HUGE_VAL;
+  for (int k = 0; k < 4; ++k) {
+    a_top = std::max(a_top, axis[0] * a[k][0] + axis[1] * a[k][1] + axis[2] * a[k][2]);
+    b_bottom = std::min(b_bottom, axis[0] * b[k][0] + axis[1] * b[k][1] + axis[2] * b[k][2]);
+  }
+  return (b_bottom - a_top) / len;
+}
+
 }  // namespace
 
 BodyContact::BodyContact(const Model& m) : verlet_(buffer_for(m)) {
@@ -81,20 +100,24 @@ void BodyContact::update_candidates(const Model& m) {
   std::swap(pairs_, old_pairs_);
   pairs_.clear();
   std::size_t o = 0;
+  const double buffer = verlet_.buffer();
   for (const CandidatePair& c : found_) {
     const int ba = m.contact_tet_body[c.i], bb = m.contact_tet_body[c.j];
     if (m.bodies[ba].fixed && m.bodies[bb].fixed) continue;
+    while (o < old_pairs_.size() &&
+           (old_pairs_[o].i < c.i || (old_pairs_[o].i == c.i && old_pairs_[o].j < c.j)))
+      ++o;
+    const bool kept = o < old_pairs_.size() && old_pairs_[o].i == c.i && old_pairs_[o].j == c.j;
+    const bool spring =
+        kept && (old_pairs_[o].spring.stick[0] != 0.0 || old_pairs_[o].spring.stick[1] != 0.0 ||
+                 old_pairs_[o].spring.stick[2] != 0.0);
+    if (!spring && centroid_line_gap(tet_positions_[c.i], tet_positions_[c.j]) > buffer) continue;
     Pair p;
     p.i = c.i;
     p.j = c.j;
     p.penalty = pair_penalty(m, ba, bb);
     p.friction = m.contact.friction_between(ba, bb);
-    while (o < old_pairs_.size() &&
-           (old_pairs_[o].i < c.i || (old_pairs_[o].i == c.i && old_pairs_[o].j < c.j)))
-      ++o;
-    if (o < old_pairs_.size() && old_pairs_[o].i == c.i && old_pairs_[o].j == c.j) {
-      p.spring = old_pairs_[o].spring;
-    }
+    if (kept) p.spring = old_pairs_[o].spring;
     pairs_.push_back(p);
   }
   // each candidate node's flat-contact stiffness, with the stiffest penalty of its pairs
@@ -207,10 +230,10 @@ void BodyContact::compute(const Model& m, double step_dt, std::vector<double>& f
     const std::int32_t n = nodes_[q];
     node_positions_[q] = Vec3(m.x[3 * n], m.x[3 * n + 1], m.x[3 * n + 2]);
   }
+  update_tet_boxes(m);
   if (verlet_.needs_rebuild(node_positions_)) update_candidates(m);
   max_k_over_m_ = near_k_over_m_;
 
-  update_tet_boxes(m);
   std::visit([&]<class Law>(const Law&) { evaluate_pairs<Law>(m, step_dt); }, law_);
 
   // sum in pair order: the same bits with any number of threads
