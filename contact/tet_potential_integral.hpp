@@ -7,24 +7,14 @@
 // polyhedron clipper of the tests (tests/support/convex_polyhedron.hpp).
 #include <algorithm>
 #include <array>
+
 #include <cmath>
+#include "contact/point3.hpp"
 
 #include "contact/tet_potential_contact.hpp"
 
 namespace femdem::contact {
 namespace potential_integral {
-
-using P3 = std::array<double, 3>;
-
-inline double dot(const P3& a, const P3& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-inline P3 cross(const P3& a, const P3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-inline P3 sub(const P3& a, const P3& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
 
 // lambda_i(x) = c[i] + g[i] . x: the barycentric coordinates as affine functions. They are
 // also the clipping half-spaces (lambda_i >= 0 is the inner side of face i), which makes the

@@ -6,13 +6,14 @@
 // 81 pieces; in practice a plane keeps most pieces whole or drops them, and this measured
 // faster than a polyhedron clipper (tests/support/convex_polyhedron.hpp, the tests' check).
 #include <array>
+
 #include <cmath>
+#include "contact/point3.hpp"
 
 namespace femdem::contact {
 
 class TetrahedronSetClip {
  public:
-  using P3 = std::array<double, 3>;
   static constexpr int kMaxPlanes = 4;
 
   void set_tetrahedron(const std::array<P3, 4>& p) {
@@ -48,11 +49,6 @@ class TetrahedronSetClip {
   };
   static constexpr int kMaxPieces = 81;
 
-  static P3 sub(const P3& a, const P3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-  static double dot(const P3& a, const P3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-  static P3 cross(const P3& a, const P3& b) {
-    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-  }
   static P3 cut(const P3& p, double sp, const P3& q, double sq) {
     const double t = sp / (sp - sq);  // sp >= 0 > sq
     return {p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1]), p[2] + t * (q[2] - p[2])};

@@ -15,18 +15,14 @@
 #include "engine/body_contact.hpp"
 #include "engine/contact_stiffness.hpp"
 #include "engine/simulation.hpp"
+#include "support/elastic_material.hpp"
 #include "support/kuhn_box.hpp"
 
 using namespace femdem;
 
 TEST(ContactCandidates, EveryTouchingPairOfARandomClusterIsFound) {
   ModelSpec s;
-  MaterialParams mat;
-  mat.name = "steel";
-  mat.density = 7800.0;
-  mat.youngs_modulus = 2e11;
-  mat.poisson_ratio = 0.3;
-  s.materials.push_back(mat);
+  s.materials.push_back(test::elastic_material("steel", 7800.0, 2e11, 0.3));
   const int bodies = 10;
   std::mt19937 rng(29);
   std::uniform_real_distribution<double> u(-1.0, 1.0);

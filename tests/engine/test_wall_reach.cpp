@@ -11,18 +11,14 @@
 #include "engine/contact_stiffness.hpp"
 #include "engine/simulation.hpp"
 #include "engine/wall_contact.hpp"
+#include "support/elastic_material.hpp"
 #include "support/kuhn_box.hpp"
 
 using namespace femdem;
 
 TEST(WallReach, ForcesEqualTheSumOverEveryNodeAndWall) {
   ModelSpec s;
-  MaterialParams mat;
-  mat.name = "steel";
-  mat.density = 7800.0;
-  mat.youngs_modulus = 2e11;
-  mat.poisson_ratio = 0.3;
-  s.materials.push_back(mat);
+  s.materials.push_back(test::elastic_material("steel", 7800.0, 2e11, 0.3));
   BodySpec b;
   b.name = "block";
   b.material = 0;

@@ -15,14 +15,20 @@
 // (the cut), and a simple polyhedron of F faces has 2F - 4 vertices, so a tetrahedron clipped
 // by up to kMaxPlanes planes fits the fixed storage: no allocation.
 #include <array>
+
 #include <cassert>
 #include <cstdint>
+#include "contact/point3.hpp"
 
 namespace femdem::test {
 
+using contact::cross;
+using contact::dot;
+using contact::sub;
+
 class ConvexPolyhedron {
  public:
-  using P3 = std::array<double, 3>;
+  using P3 = contact::P3;
   static constexpr int kMaxPlanes = 6;
   // 2F - 4 vertices before a clip (F <= 4 + kMaxPlanes - 1) plus one per cut edge (3V/2).
   static constexpr int kMaxVertices = (2 * (3 + kMaxPlanes) - 4) * 5 / 2;
@@ -171,11 +177,6 @@ class ConvexPolyhedron {
   }
 
  private:
-  static P3 sub(const P3& a, const P3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-  static double dot(const P3& a, const P3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-  static P3 cross(const P3& a, const P3& b) {
-    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-  }
   // The traversal rule: arriving at a vertex through its slot j (back_ of the edge taken), a
   // face goes on through slot kAfter[j], the neighbour after the one it came from.
   static constexpr std::int8_t kAfter[3] = {1, 2, 0};
