@@ -139,12 +139,20 @@ void BodyContact::update_candidates(const Model& m) {
   // touching (evaluate() zeroes it then), so nothing is lost here.
   results_.resize(pairs_.size());
   evaluated_.assign(pairs_.size(), 0);
+  active_tets_.clear();
+  for (const Pair& p : pairs_) {
+    active_tets_.push_back(p.i);
+    active_tets_.push_back(p.j);
+  }
+  std::sort(active_tets_.begin(), active_tets_.end());
+  active_tets_.erase(std::unique(active_tets_.begin(), active_tets_.end()), active_tets_.end());
 }
 
-void BodyContact::update_tet_boxes(const Model& m) {
-  const auto nt = static_cast<std::int64_t>(m.contact_tets.size());
+void BodyContact::update_tet_boxes(const Model& m, bool all) {
+  const auto nt = static_cast<std::int64_t>(all ? m.contact_tets.size() : active_tets_.size());
 #pragma omp parallel for schedule(static) if (nt > kParallelMinTets)
-  for (std::int64_t t = 0; t < nt; ++t) {
+  for (std::int64_t q = 0; q < nt; ++q) {
+    const std::size_t t = all ? static_cast<std::size_t>(q) : active_tets_[q];
     Aabb& b = tet_boxes_[t];
     TetPositions& p = tet_positions_[t];
     const auto& c = m.contact_tets[t];
@@ -230,8 +238,14 @@ void BodyContact::compute(const Model& m, double step_dt, std::vector<double>& f
     const std::int32_t n = nodes_[q];
     node_positions_[q] = Vec3(m.x[3 * n], m.x[3 * n + 1], m.x[3 * n + 2]);
   }
-  update_tet_boxes(m);
-  if (verlet_.needs_rebuild(node_positions_)) update_candidates(m);
+  // every sub-tet's corners when the list is rebuilt (its filter needs them), else only those
+  // of the listed pairs
+  if (verlet_.needs_rebuild(node_positions_)) {
+    update_tet_boxes(m, true);
+    update_candidates(m);
+  } else {
+    update_tet_boxes(m, false);
+  }
   max_k_over_m_ = near_k_over_m_;
 
   std::visit([&]<class Law>(const Law&) { evaluate_pairs<Law>(m, step_dt); }, law_);

@@ -91,7 +91,8 @@ class BodyContact final : public ContactModel {
   };
 
   void update_candidates(const Model& m);
-  void update_tet_boxes(const Model& m);
+  // The corners and boxes of every contact sub-tet (all) or of those in candidate pairs.
+  void update_tet_boxes(const Model& m, bool all);
   void gather_patches(const Model& m);
   // Every candidate pair through the law, into results_ (in parallel).
   template <class Law>
@@ -115,6 +116,7 @@ class BodyContact final : public ContactModel {
   std::vector<std::uint8_t> evaluated_;
   std::vector<Aabb> tet_boxes_;              // of each contact sub-tet, this step (no margin)
   std::vector<TetPositions> tet_positions_;  // its corners, this step
+  std::vector<std::uint32_t> active_tets_;   // the sub-tets of candidate pairs, sorted
   std::vector<double> node_stiffness_;       // per model node, this step
   // Per boundary node, the stiffness a flat contact would give it (8 p A / h: the potentials of
   // both sides rise by 4 / h across their elements): counted for the stable step as soon as the

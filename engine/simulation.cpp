@@ -243,8 +243,12 @@ void Simulation::compute_forces(double step_dt) {
 
 double Simulation::damp_deformation(double alpha) {
   Model& m = model_;
-  double power = 0.0;
-  for (const Body& b : m.bodies) {
+  // per body (in parallel: a node belongs to one body), then summed in body order
+  const auto nb = static_cast<std::int64_t>(m.bodies.size());
+  body_power_.assign(m.bodies.size(), 0.0);
+#pragma omp parallel for schedule(dynamic, 1) if (nb > 1 && m.node_count > kParallelMinElements)
+  for (std::int64_t bi = 0; bi < nb; ++bi) {
+    const Body& b = m.bodies[bi];
     if (b.fixed) continue;
     const std::int32_t n0 = b.first_node, n1 = b.first_node + b.node_count;
     // the rigid motion with the body's momentum and angular momentum (half-step velocities)
@@ -253,6 +257,7 @@ double Simulation::damp_deformation(double alpha) {
     const Vec3& c = rm.centre;
     const Vec3& vc = rm.velocity;
     const Vec3& w = rm.angular_velocity;
+    double power = 0.0;
     for (std::int32_t n = n0; n < n1; ++n) {
       const double mn = m.mass[n];
       const Vec3 r = Vec3(m.x[3 * n], m.x[3 * n + 1], m.x[3 * n + 2]) - c;
@@ -261,7 +266,10 @@ double Simulation::damp_deformation(double alpha) {
       // sum m dv . v_rigid = 0 by construction, so the power is -alpha sum m |dv|^2
       power += alpha * mn * dv.squaredNorm();
     }
+    body_power_[bi] = power;
   }
+  double power = 0.0;
+  for (const double p : body_power_) power += p;
   return power;
 }
 

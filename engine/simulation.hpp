@@ -86,6 +86,8 @@ class Simulation {
   BodyState body_state(int body) const;
   // The cheap part of body_state (no volume, no bounding box), for per-step monitoring.
   BodyState body_motion(int body) const;
+  // body_motion of every body (in parallel over bodies), into `out`.
+  void body_motions(std::vector<BodyState>& out) const;
   // Largest principal Cauchy stress (tension positive) over the body's Gauss points now: the
   // peak tension that cracks concrete, e.g. in the arms of a dropped armour unit.
   double max_principal_stress(int body) const;
@@ -167,6 +169,7 @@ class Simulation {
   double stable_bound_ = 0.0, bound_at_estimate_ = 0.0, step_ratio_ = 1.0;
   std::int64_t estimate_step_ = 0, frequency_estimates_ = 0, frequency_iterations_ = 0;
   std::vector<double> accel_;             // 3 per node
+  std::vector<double> body_power_;        // per body, scratch of damp_deformation
   std::vector<double> elem_force_;        // 30 per element
   std::vector<double> elem_energy_;       // per element
   std::vector<double> elem_dt_;           // per element stable step

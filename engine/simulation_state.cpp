@@ -88,6 +88,14 @@ BodyState Simulation::body_motion(int bi) const {
   return s;
 }
 
+void Simulation::body_motions(std::vector<BodyState>& out) const {
+  const auto nb = static_cast<std::int64_t>(model_.bodies.size());
+  out.resize(model_.bodies.size());
+#pragma omp parallel for schedule(dynamic, \
+                                  1) if (nb > 1 && model_.node_count > kParallelMinElements)
+  for (std::int64_t b = 0; b < nb; ++b) out[b] = body_motion(static_cast<int>(b));
+}
+
 BodyState Simulation::body_state(int bi) const {
   const Model& m = model_;
   const Body& b = m.bodies[bi];

@@ -277,9 +277,10 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
     history.write_row(row);
     schedule.history_written(sim.time());
   };
+  std::vector<BodyState> motions;
   auto observe_step = [&] {
-    for (std::size_t b = 0; b < m.bodies.size(); ++b)
-      restitution[b].observe(sim.body_motion(static_cast<int>(b)));
+    sim.body_motions(motions);
+    for (std::size_t b = 0; b < m.bodies.size(); ++b) restitution[b].observe(motions[b]);
   };
 
   auto loop_start = Clock::now();
