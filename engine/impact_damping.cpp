@@ -4,21 +4,30 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/parallel_threshold.hpp"
+
 namespace femdem {
 
 double damp_impacts(Model& m, double ratio, const std::vector<ContactPatch>& patches,
                     const std::vector<double>& accel, double half_dt, ImpactDampingScratch& s) {
-  std::fill(s.known.begin(), s.known.end(), 0);
-  auto motion = [&](std::int32_t b) -> const RigidMotion& {
-    if (!s.known[b]) {
-      s.rigid[b] = rigid_motion(m, m.bodies[b], accel.data(), half_dt);
-      s.force[b].setZero();
-      s.moment[b].setZero();
-      s.known[b] = 1;
-    }
-    return s.rigid[b];
-  };
   auto free_body = [&](std::int32_t b) { return b >= 0 && !m.bodies[b].fixed; };
+  // the rigid motions of the free bodies of the patches that act, each a pass over its nodes:
+  // in parallel over bodies (each independent, so the same bits with any thread count)
+  std::fill(s.known.begin(), s.known.end(), 0);
+  for (const ContactPatch& p : patches) {
+    if (!(p.force_on_a.norm() > 0.0) || !(p.weight > 0.0) || !(p.stiffness > 0.0)) continue;
+    for (const std::int32_t b : {p.body_a, p.body_b})
+      if (free_body(b)) s.known[b] = 1;
+  }
+  const auto nb = static_cast<std::int64_t>(m.bodies.size());
+#pragma omp parallel for schedule(dynamic, 1) if (nb > 1 && m.node_count > kParallelMinElements)
+  for (std::int64_t b = 0; b < nb; ++b) {
+    if (!s.known[b]) continue;
+    s.rigid[b] = rigid_motion(m, m.bodies[b], accel.data(), half_dt);
+    s.force[b].setZero();
+    s.moment[b].setZero();
+  }
+  auto motion = [&](std::int32_t b) -> const RigidMotion& { return s.rigid[b]; };
   auto load = [&](std::int32_t b, const Vec3& x, const Vec3& f) {
     s.force[b] += f;
     s.moment[b] += (x - s.rigid[b].centre).cross(f);
@@ -58,7 +67,8 @@ double damp_impacts(Model& m, double ratio, const std::vector<ContactPatch>& pat
       m.walls[static_cast<std::size_t>(-1 - p.body_b)].force -= f;
     }
   }
-  for (std::size_t b = 0; b < m.bodies.size(); ++b)
+#pragma omp parallel for schedule(dynamic, 1) if (nb > 1 && m.node_count > kParallelMinElements)
+  for (std::int64_t b = 0; b < nb; ++b)
     if (s.known[b] && s.rigid[b].mass > 0.0)
       add_rigid_load(m, m.bodies[b], s.rigid[b], s.force[b], s.moment[b], m.f_contact);
   return power;
