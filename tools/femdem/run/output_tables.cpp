@@ -206,7 +206,10 @@ constexpr SummaryKey kSummaryKeys[] = {
      [](const RunRecord& r) {
        return static_cast<double>(r.sim.body_contact().broadphase_runs());
      }},
-    {"contact_pair_evaluations", "-", "candidate sub-tet pairs evaluated, summed over the steps",
+    {"contact_pair_evaluations", "-",
+     "candidate sub-tet pairs (those listed as able to touch before the next broadphase), summed "
+     "over the steps; a candidate whose boxes are apart that step is counted but not put through "
+     "the pair kernel",
      "bodies can touch each other", body_contact,
      [](const RunRecord& r) {
        return static_cast<double>(r.sim.body_contact().pair_evaluations());
