@@ -33,6 +33,7 @@ struct PairInput {
 struct PairSpring {
   double stick[3] = {0, 0, 0};   // friction spring stretch
   double stick_stiffness = 0.0;  // its stiffness the last step it touched
+  bool stretched() const { return stick[0] != 0.0 || stick[1] != 0.0 || stick[2] != 0.0; }
 };
 
 struct PairOutcome {

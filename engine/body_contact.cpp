@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "engine/body_contact.hpp"
 
+#include "contact/centroid_line.hpp"
 #include "engine/contact_stiffness.hpp"
 
 #include <algorithm>
@@ -28,23 +29,14 @@ bool held(const Model& m, std::int32_t n) {
   return m.dof_mode[3 * n] != 0 && m.dof_mode[3 * n + 1] != 0 && m.dof_mode[3 * n + 2] != 0;
 }
 
-// The gap between two tetrahedra along the line through their centroids (fixed at the call):
-// the lowest corner of b minus the highest of a, projected on the unit axis from a's centroid
-// to b's. While every node moves less than buffer / 2 the gap along that fixed axis shrinks by
-// less than buffer, so a pair with a gap over the buffer cannot touch before the list is
-// rebuilt: the broadphase's boxes of slanted surface tetrahedra overlap far more often.
+// The gap between two tetrahedra along the line through their centroids (fixed at the call).
+// While every node moves less than buffer / 2 the gap along that fixed axis shrinks by less
+// than buffer, so a pair with a gap over the buffer cannot touch before the list is rebuilt:
+// the broadphase's boxes of slanted surface tetrahedra overlap far more often.
 double centroid_line_gap(const TetPositions& a, const TetPositions& b) {
-  double axis[3] = {0.0, 0.0, 0.0};
-  for (int k = 0; k < 4; ++k)
-    for (int d = 0; d < 3; ++d) axis[d] += b[k][d] - a[k][d];
-  const double len = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
-  if (!(len > 0.0)) return -HUGE_VAL;
-  double a_top = -HUGE_VAL, b_bottom = HUGE_VAL;
-  for (int k = 0; k < 4; ++k) {
-    a_top = std::max(a_top, axis[0] * a[k][0] + axis[1] * a[k][1] + axis[2] * a[k][2]);
-    b_bottom = std::min(b_bottom, axis[0] * b[k][0] + axis[1] * b[k][1] + axis[2] * b[k][2]);
-  }
-  return (b_bottom - a_top) / len;
+  double length = 0.0;
+  const double separation = contact::centroid_line_separation(a, b, &length);
+  return length > 0.0 ? separation / length : -HUGE_VAL;
 }
 
 }  // namespace
@@ -108,9 +100,7 @@ void BodyContact::update_candidates(const Model& m) {
            (old_pairs_[o].i < c.i || (old_pairs_[o].i == c.i && old_pairs_[o].j < c.j)))
       ++o;
     const bool kept = o < old_pairs_.size() && old_pairs_[o].i == c.i && old_pairs_[o].j == c.j;
-    const bool spring =
-        kept && (old_pairs_[o].spring.stick[0] != 0.0 || old_pairs_[o].spring.stick[1] != 0.0 ||
-                 old_pairs_[o].spring.stick[2] != 0.0);
+    const bool spring = kept && old_pairs_[o].spring.stretched();
     if (!spring && centroid_line_gap(tet_positions_[c.i], tet_positions_[c.j]) > buffer) continue;
     Pair p;
     p.i = c.i;
@@ -182,7 +172,7 @@ void BodyContact::evaluate_pairs(const Model& m, double step_dt) {
     const Aabb& b = tet_boxes_[p.j];
     const bool apart = a.hi[0] <= b.lo[0] || b.hi[0] <= a.lo[0] || a.hi[1] <= b.lo[1] ||
                        b.hi[1] <= a.lo[1] || a.hi[2] <= b.lo[2] || b.hi[2] <= a.lo[2];
-    if (apart && p.spring.stick[0] == 0.0 && p.spring.stick[1] == 0.0 && p.spring.stick[2] == 0.0) {
+    if (apart && !p.spring.stretched()) {
       evaluated_[q] = 0;
       continue;
     }
