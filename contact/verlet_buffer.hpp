@@ -35,6 +35,9 @@ class VerletBuffer {
   // Remembers the positions the candidate list was built from (reuses its storage).
   void record(std::span<const Vec3> positions);
   bool has_record() const { return recorded_; }
+  // The positions recorded last (empty before the first record): a checkpoint saves them and
+  // hands them back to record() on restart.
+  const std::vector<Vec3>& recorded_positions() const { return reference_; }
 
   // Largest |x - x_recorded| over the nodes; +infinity if nothing is recorded, the node count
   // changed, or a position is not finite (NaN compares false, so it must not slip through).

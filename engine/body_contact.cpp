@@ -321,4 +321,29 @@ void BodyContact::append_springs(const Model& m, std::vector<ContactSpring>& out
       }
 }
 
+void BodyContact::exchange_state(StateArchive& a) {
+  using L = StateArchive::Length;
+  const StateArchive::Scope scope(a, "body_contact");
+  a.array("pairs", pairs_, L::variable);
+  a.array("active_tets", active_tets_, L::variable);
+  std::vector<Vec3> reference = verlet_.recorded_positions();
+  a.array("verlet_reference", reference, L::variable);
+  a.array("node_contact_stiffness", node_contact_stiffness_);
+  a.value("near_k_over_m", near_k_over_m_);
+  a.value("max_k_over_m", max_k_over_m_);
+  a.value("energy", energy_);
+  a.value("dissipated", dissipated_);
+  a.value("max_penetration", max_penetration_);
+  a.value("max_penetration_per_size", max_penetration_per_size_);
+  a.value("touching", touching_);
+  a.value("broadphase_runs", broadphase_runs_);
+  a.value("pair_evaluations", pair_evaluations_);
+  a.value("touching_evaluations", touching_evaluations_);
+  if (a.saving()) return;
+  if (!reference.empty()) verlet_.record(reference);
+  // the per-pair slots of the next step, as a rebuild leaves them
+  results_.resize(pairs_.size());
+  evaluated_.assign(pairs_.size(), 0);
+}
+
 }  // namespace femdem

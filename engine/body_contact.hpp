@@ -22,6 +22,7 @@
 #include "engine/contact_model.hpp"
 #include "engine/contact_patch.hpp"
 #include "engine/model.hpp"
+#include "engine/state_archive.hpp"
 
 namespace femdem {
 
@@ -81,6 +82,10 @@ class BodyContact final : public ContactModel {
   // bodies' indices, body_a < body_b): filled only when asked for (collect_patches).
   void collect_patches(bool on) { collect_patches_ = on; }
   const std::vector<ContactPatch>& patches() const { return patches_; }
+  // Saves or loads (engine/state_archive.hpp) the candidate list with its friction springs, the
+  // Verlet reference, the stable-step stiffnesses and the counters: with the model's own state,
+  // all that makes the steps after a restart the same bits as without it.
+  void exchange_state(StateArchive& a);
 
  private:
   struct Pair {

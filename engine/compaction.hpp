@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "engine/model_spec.hpp"
+#include "engine/state_archive.hpp"
 
 namespace femdem {
 
@@ -38,6 +39,13 @@ class CompactionMonitor {
   CompactionSample sample(const Simulation& sim) const;
   const CompactionSpec& spec() const { return spec_; }
   double initial_solid_volume() const { return v0_; }
+  // Saves or loads what it recorded at t = 0 (a resumed run measures against the same start).
+  void exchange_state(StateArchive& a) {
+    const StateArchive::Scope scope(a, "compaction");
+    a.value("v0", v0_);
+    a.value("h0", h0_);
+    a.value("punch0", punch0_);
+  }
 
  private:
   CompactionSpec spec_;

@@ -52,6 +52,11 @@ struct SimulationSettings {
   }
   double output_interval = 0.0;   // 0: end_time / 50
   double history_interval = 0.0;  // 0: output_interval / 20
+  // Checkpoints (checkpoint.h5 in the output folder, for femdem resume): every this many
+  // simulated seconds (0: not by simulated time) and every this many wall seconds (0: not by
+  // wall time); one is also written on SIGINT/SIGTERM, at rest and before the last steps.
+  double checkpoint_interval = 0.0;
+  double checkpoint_wall_interval = 600.0;
   Vec3 gravity = Vec3::Zero();
   int threads = 0;  // 0: all cores
   // Artificial bulk viscosity coefficients (0: off); 0.06 and 1.5 are the values explicit codes

@@ -15,6 +15,7 @@
 #include "engine/impact_damping.hpp"
 #include "engine/model.hpp"
 #include "engine/stable_step/highest_frequency.hpp"
+#include "engine/state_archive.hpp"
 #include "engine/wall_contact.hpp"
 #include "materials/material_params.hpp"
 
@@ -103,6 +104,12 @@ class Simulation {
   // (-trace/3), equivalent plastic strain.
   void element_stress(std::vector<double>& stress6, std::vector<double>& von_mises,
                       std::vector<double>& pressure, std::vector<double>& eq_plastic) const;
+
+  // Saves the whole state between two steps into the archive, or loads it into a Simulation
+  // built from the same scene (engine/simulation_checkpoint.cpp): the steps after a load are the
+  // same bits as those of the run that saved it. Throws CheckpointError on a checkpoint that
+  // does not fit the model.
+  void exchange_state(StateArchive& a);
 
  private:
   // internal + wall contact at current x, after a step of length step_dt (0 at the start);

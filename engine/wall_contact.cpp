@@ -232,4 +232,22 @@ void WallContact::append_springs(const Model& m, std::vector<ContactSpring>& out
   }
 }
 
+void WallContact::exchange_state(StateArchive& a) {
+  using L = StateArchive::Length;
+  const StateArchive::Scope scope(a, "wall_contact");
+  a.array("near", near_, L::variable);
+  a.array("stick", stick_, L::variable);
+  a.array("wall_offset_at_build", wall_offset_at_build_);
+  std::vector<Vec3> reference = moved_.recorded_positions();
+  a.array("reach_reference", reference, L::variable);
+  a.value("released", released_);
+  a.value("near_builds", near_builds_);
+  a.array("stiffness", stiffness_);
+  a.array("penetration", penetration_);
+  a.array("penetration_per_size", penetration_per_size_);
+  a.value("damping_factor", damping_factor_);
+  a.value("driven_wall_step", driven_wall_step_);
+  if (!a.saving() && !reference.empty()) moved_.record(reference);
+}
+
 }  // namespace femdem

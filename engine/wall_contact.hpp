@@ -20,6 +20,7 @@
 #include "contact/contact_laws.hpp"
 #include "contact/verlet_buffer.hpp"
 #include "engine/contact_model.hpp"
+#include "engine/state_archive.hpp"
 
 namespace femdem {
 
@@ -47,6 +48,9 @@ class WallContact final : public ContactModel {
   double max_penetration(std::size_t wall) const { return penetration_[wall]; }
   double max_penetration_per_size(std::size_t wall) const { return penetration_per_size_[wall]; }
   double driven_wall_step() const { return driven_wall_step_; }
+  // Saves or loads (engine/state_archive.hpp) the reach list with its friction springs, what it
+  // was built from, the unbooked releases and the per-wall stiffness, depth and step figures.
+  void exchange_state(StateArchive& a);
 
  private:
   struct NearPair {

@@ -5,6 +5,7 @@
 // killed at any moment) sees either the old complete file or the new complete file, never a
 // half-written one.
 #include <filesystem>
+#include <functional>
 #include <string_view>
 
 namespace femdem {
@@ -16,5 +17,12 @@ namespace femdem {
 // the failing call) on any error; the temporary file is removed then.
 void write_file_atomically(const std::filesystem::path& path, std::string_view content,
                            bool durable = true);
+
+// The same for a file another library writes (an HDF5 checkpoint): `write` creates and closes
+// the temporary file it is given; it is then fsync'ed (durable), renamed over `path` and the
+// folder fsync'ed. If `write` throws, the temporary file is removed and the exception passes on.
+void replace_file_atomically(const std::filesystem::path& path,
+                             const std::function<void(const std::filesystem::path& tmp)>& write,
+                             bool durable = true);
 
 }  // namespace femdem

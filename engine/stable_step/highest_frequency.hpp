@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "engine/model.hpp"
+#include "engine/state_archive.hpp"
 
 namespace femdem {
 
@@ -52,6 +53,10 @@ class HighestFrequency {
   // Applies K (elements at the current shape and the springs) to u, 3 per node: for tests.
   void apply_stiffness(const Model& m, const std::vector<ContactSpring>& springs, const double* u,
                        double* f);
+
+  // Saves or loads the warm start (the last estimate's eigenvector): the next estimate after a
+  // restart starts where it would have.
+  void exchange_state(StateArchive& a) { a.array("start", start_, StateArchive::Length::variable); }
 
  private:
   void apply(const Model& m, const std::vector<ContactSpring>& springs, const double* v, double* y);

@@ -52,12 +52,59 @@ HistoryWriter::HistoryWriter(const std::filesystem::path& path, std::vector<std:
   if (fd_ < 0) {
     throw std::runtime_error("cannot create '" + path_.string() + "': " + std::strerror(errno));
   }
-  for (std::size_t i = 0; i < columns_.size(); ++i) {
-    if (i) buffer_ += ',';
-    buffer_ += csv_field(columns_[i]);
-  }
-  buffer_ += '\n';
+  buffer_ = header_line(columns_);
   flush();
+}
+
+HistoryWriter::HistoryWriter(const std::filesystem::path& path, std::vector<std::string> columns,
+                             ContinueAt at, double flush_interval_s)
+    : path_(path),
+      columns_(std::move(columns)),
+      flush_interval_(std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+          std::chrono::duration<double>(flush_interval_s > 0 ? flush_interval_s : 0.0))),
+      last_flush_(std::chrono::steady_clock::now()) {
+  check_continuable(path_, columns_, at);
+  fd_ = ::open(path_.c_str(), O_WRONLY | O_CLOEXEC);
+  if (fd_ < 0 || ::ftruncate(fd_, static_cast<off_t>(at.bytes)) != 0 ||
+      ::lseek(fd_, static_cast<off_t>(at.bytes), SEEK_SET) < 0) {
+    const int err = errno;
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = -1;
+    throw std::runtime_error("cannot cut back '" + path_.string() + "': " + std::strerror(err));
+  }
+  file_size_ = at.bytes;
+  rows_ = at.rows;
+}
+
+void HistoryWriter::check_continuable(const std::filesystem::path& path,
+                                      const std::vector<std::string>& columns, ContinueAt at) {
+  if (columns.empty()) throw std::invalid_argument("history.csv: no columns");
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0)
+    throw std::runtime_error("cannot open '" + path.string() + "': " + std::strerror(errno));
+  const off_t size = ::lseek(fd, 0, SEEK_END);
+  const std::string header = header_line(columns);
+  std::string head(header.size(), '\0');
+  const bool header_read =
+      ::pread(fd, head.data(), head.size(), 0) == static_cast<ssize_t>(head.size());
+  ::close(fd);
+  if (size < 0 || static_cast<std::uint64_t>(size) < at.bytes)
+    throw std::runtime_error("'" + path.string() + "' holds " + std::to_string(size) +
+                             " bytes, fewer than the " + std::to_string(at.bytes) +
+                             " the checkpoint counts: rows were lost");
+  if (!header_read || head != header)
+    throw std::runtime_error("'" + path.string() +
+                             "' does not start with this run's header line (other columns)");
+}
+
+std::string HistoryWriter::header_line(const std::vector<std::string>& columns) {
+  std::string line;
+  for (std::size_t i = 0; i < columns.size(); ++i) {
+    if (i) line += ',';
+    line += csv_field(columns[i]);
+  }
+  line += '\n';
+  return line;
 }
 
 HistoryWriter::~HistoryWriter() {

@@ -26,6 +26,19 @@ class HistoryWriter {
   // row. Throws std::runtime_error if the file cannot be created.
   HistoryWriter(const std::filesystem::path& path, std::vector<std::string> columns,
                 double flush_interval_s = 0.5);
+  // Continues the history of an interrupted run (femdem resume): the file is cut back to the
+  // first `bytes` (the header and the `rows` rows written before the checkpoint) and rows are
+  // appended after them. Throws std::runtime_error naming the file when it is missing, shorter
+  // than that, or starts with another header.
+  struct ContinueAt {
+    std::uint64_t bytes = 0;
+    std::int64_t rows = 0;
+  };
+  HistoryWriter(const std::filesystem::path& path, std::vector<std::string> columns, ContinueAt at,
+                double flush_interval_s = 0.5);
+  // What that constructor checks, without changing the file (std::runtime_error naming it).
+  static void check_continuable(const std::filesystem::path& path,
+                                const std::vector<std::string>& columns, ContinueAt at);
   ~HistoryWriter();  // flushes and closes; never throws
   HistoryWriter(const HistoryWriter&) = delete;
   HistoryWriter& operator=(const HistoryWriter&) = delete;
@@ -40,8 +53,11 @@ class HistoryWriter {
 
   const std::vector<std::string>& columns() const { return columns_; }
   std::int64_t rows() const { return rows_; }
+  // Bytes handed to the file so far (after flush(): the whole file), what a checkpoint records.
+  std::uint64_t bytes_written() const { return file_size_; }
 
  private:
+  static std::string header_line(const std::vector<std::string>& columns);
   std::filesystem::path path_;
   std::vector<std::string> columns_;
   std::chrono::steady_clock::duration flush_interval_;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "io/atomic_file.hpp"
+#include "io/hdf5_handle.hpp"
 
 namespace femdem {
 
@@ -23,39 +24,6 @@ constexpr const char* kH5Name = "results.h5";
 constexpr const char* kXdmfName = "results.xdmf";
 constexpr std::size_t kChunkBytes = std::size_t{1} << 20;  // target size of one frame chunk
 constexpr hsize_t kTimeChunk = 1024;
-
-// Owns one HDF5 identifier.
-class Handle {
- public:
-  using Closer = herr_t (*)(hid_t);
-  Handle() = default;
-  Handle(hid_t id, Closer closer) : id_(id), closer_(closer) {}
-  Handle(Handle&& o) noexcept : id_(std::exchange(o.id_, H5I_INVALID_HID)), closer_(o.closer_) {}
-  Handle& operator=(Handle&& o) noexcept {
-    if (this != &o) {
-      reset();
-      id_ = std::exchange(o.id_, H5I_INVALID_HID);
-      closer_ = o.closer_;
-    }
-    return *this;
-  }
-  ~Handle() { reset(); }
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  // Returns the close status (0 if nothing to close).
-  herr_t reset() {
-    herr_t status = 0;
-    if (id_ >= 0 && closer_) status = closer_(id_);
-    id_ = H5I_INVALID_HID;
-    return status;
-  }
-  hid_t get() const { return id_; }
-  bool valid() const { return id_ >= 0; }
-
- private:
-  hid_t id_ = H5I_INVALID_HID;
-  Closer closer_ = nullptr;
-};
 
 std::string fmt_double(double v) {
   char buf[32];
@@ -137,6 +105,121 @@ struct ResultsWriter::Impl {
     }
   }
 
+  // Checks the mesh's sizes and remembers them (std::invalid_argument when inconsistent).
+  void set_mesh(const ResultsMesh& mesh) {
+    if (mesh.coordinates.size() % 3 != 0 || mesh.coordinates.empty()) {
+      throw std::invalid_argument("results: coordinates must be 3 per node, at least one node");
+    }
+    if (mesh.connectivity.empty()) throw std::invalid_argument("results: mesh has no elements");
+    nodes = mesh.coordinates.size() / 3;
+    elements = mesh.connectivity.size();
+    if (mesh.node_body.size() != nodes) {
+      throw std::invalid_argument("results: node_body must have one entry per node");
+    }
+    if (mesh.element_body.size() != elements) {
+      throw std::invalid_argument("results: element_body must have one entry per element");
+    }
+    for (const Tet10& t : mesh.connectivity) {
+      for (std::int32_t id : t) {
+        if (id < 0 || static_cast<hsize_t>(id) >= nodes) {
+          throw std::invalid_argument("results: connectivity refers to node " + std::to_string(id) +
+                                      " of " + std::to_string(nodes));
+        }
+      }
+    }
+    stress9.resize(9 * elements);
+  }
+
+  void list_fields() {
+    fields.push_back({"displacement", true, nodes, 3, "Vector", {}});
+    fields.push_back({"velocity", true, nodes, 3, "Vector", {}});
+    fields.push_back({"stress", false, elements, 9, "Tensor", {}});
+    fields.push_back({"von_mises", false, elements, 1, "Scalar", {}});
+    fields.push_back({"pressure", false, elements, 1, "Scalar", {}});
+    fields.push_back({"equivalent_plastic_strain", false, elements, 1, "Scalar", {}});
+  }
+
+  // The frame datasets' access: no chunk cache (whole chunks go straight to the file).
+  Handle frame_access() const {
+    Handle dapl(check(H5Pcreate(H5P_DATASET_ACCESS), "H5Pcreate"), H5Pclose);
+    check_status(H5Pset_chunk_cache(dapl.get(), H5D_CHUNK_CACHE_NSLOTS_DEFAULT, 0,
+                                    H5D_CHUNK_CACHE_W0_DEFAULT),
+                 "H5Pset_chunk_cache");
+    return dapl;
+  }
+
+  // Resuming: the results of the run so far, cut back to their first `keep` frames (those the
+  // checkpoint counts), then opened to append in SWMR mode as a new run's.
+  void reopen(std::int64_t keep) {
+    {
+      // A killed run leaves the SWMR writer's mark in the superblock, which refuses a new
+      // writer: clear it as `h5clear -s` does (the frames up to the checkpoint are whole).
+      Handle fapl(check(H5Pcreate(H5P_FILE_ACCESS), "H5Pcreate"), H5Pclose);
+      hbool_t clear = true;
+      H5Pset(fapl.get(), "clear_status_flags", &clear);
+      Handle file_rw(check(H5Fopen(h5_path.c_str(), H5F_ACC_RDWR, fapl.get()), "reopening"),
+                     H5Fclose);
+      const hid_t f = file_rw.get();
+      auto extent = [&](const char* path, int rank) {
+        Handle d(check(H5Dopen2(f, path, H5P_DEFAULT), std::string("opening ") + path), H5Dclose);
+        Handle sp(check(H5Dget_space(d.get()), "H5Dget_space"), H5Sclose);
+        hsize_t dims[3] = {0, 0, 0};
+        if (H5Sget_simple_extent_ndims(sp.get()) != rank) fail(std::string("reading ") + path);
+        H5Sget_simple_extent_dims(sp.get(), dims, nullptr);
+        return std::array<hsize_t, 3>{dims[0], dims[1], dims[2]};
+      };
+      const auto c = extent("/mesh/connectivity", 2);
+      const auto x = extent("/mesh/coordinates", 2);
+      if (c[0] != elements || x[0] != nodes)
+        throw std::runtime_error(h5_path.string() + " holds a mesh of " + std::to_string(x[0]) +
+                                 " nodes and " + std::to_string(c[0]) +
+                                 " elements, the scene's model " + std::to_string(nodes) +
+                                 " and " + std::to_string(elements) + ": not this run's results");
+      const auto t = extent("/frames/time", 1);
+      if (t[0] < static_cast<hsize_t>(keep))
+        throw std::runtime_error(h5_path.string() + " holds " + std::to_string(t[0]) +
+                                 " frames, fewer than the " + std::to_string(keep) +
+                                 " the checkpoint counts: the results were cut short");
+      std::vector<double> times(t[0]);
+      {
+        Handle d(check(H5Dopen2(f, "/frames/time", H5P_DEFAULT), "opening /frames/time"),
+                 H5Dclose);
+        if (!times.empty())
+          check_status(
+              H5Dread(d.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, times.data()),
+              "reading /frames/time");
+        const hsize_t kept[1] = {static_cast<hsize_t>(keep)};
+        check_status(H5Dset_extent(d.get(), kept), "cutting /frames/time");
+      }
+      for (const FrameDataset& fd : fields) {
+        const std::string path = std::string("/frames/") + fd.name;
+        Handle d(check(H5Dopen2(f, path.c_str(), H5P_DEFAULT), "opening " + path), H5Dclose);
+        const hsize_t kept[3] = {static_cast<hsize_t>(keep), fd.rows, fd.comps};
+        check_status(H5Dset_extent(d.get(), kept), "cutting " + path);
+      }
+      Handle attr(check(H5Aopen(f, "complete", H5P_DEFAULT), "opening 'complete'"), H5Aclose);
+      const int zero = 0;
+      check_status(H5Awrite(attr.get(), H5T_NATIVE_INT, &zero), "writing 'complete'");
+      attr.reset();
+      if (file_rw.reset() < 0) fail("closing the file");
+      xdmf_frames.clear();
+      for (frames = 1; frames <= keep; ++frames) append_xdmf_frame(times[frames - 1]);
+      frames = keep;
+    }
+    write_file_atomically(xdmf_path, xdmf_text(), /*durable=*/false);
+    file = Handle(check(H5Fopen(h5_path.c_str(), H5F_ACC_RDWR | H5F_ACC_SWMR_WRITE, H5P_DEFAULT),
+                        "reopening for SWMR writing"),
+                  H5Fclose);
+    const Handle dapl = frame_access();
+    time_dset = Handle(check(H5Dopen2(file.get(), "/frames/time", H5P_DEFAULT), "opening /frames/time"),
+                       H5Dclose);
+    for (FrameDataset& fd : fields)
+      fd.dset = Handle(check(H5Dopen2(file.get(), (std::string("/frames/") + fd.name).c_str(),
+                                      dapl.get()),
+                             std::string("opening /frames/") + fd.name),
+                       H5Dclose);
+  }
+
   void create_frame_dataset(hid_t group, FrameDataset& f) {
     const hid_t file_type = options.single_precision ? H5T_IEEE_F32LE : H5T_IEEE_F64LE;
     const std::size_t value_size = options.single_precision ? 4 : 8;
@@ -150,11 +233,7 @@ struct ResultsWriter::Impl {
     check_status(H5Pset_chunk(dcpl.get(), rank, chunk), "H5Pset_chunk");
     // Every chunk is written whole (or to the end of the data): no fill values needed.
     check_status(H5Pset_fill_time(dcpl.get(), H5D_FILL_TIME_NEVER), "H5Pset_fill_time");
-    // No chunk cache: whole chunks go straight to the file, without a copy.
-    Handle dapl(check(H5Pcreate(H5P_DATASET_ACCESS), "H5Pcreate"), H5Pclose);
-    check_status(H5Pset_chunk_cache(dapl.get(), H5D_CHUNK_CACHE_NSLOTS_DEFAULT, 0,
-                                    H5D_CHUNK_CACHE_W0_DEFAULT),
-                 "H5Pset_chunk_cache");
+    const Handle dapl = frame_access();
     f.dset = Handle(check(H5Dcreate2(group, f.name, file_type, space.get(), H5P_DEFAULT, dcpl.get(),
                                      dapl.get()),
                           std::string("creating /frames/") + f.name),
@@ -255,27 +334,7 @@ ResultsWriter::ResultsWriter(const std::filesystem::path& folder, const ResultsM
   m.h5_path = folder / kH5Name;
   m.xdmf_path = folder / kXdmfName;
   m.options = options;
-  if (mesh.coordinates.size() % 3 != 0 || mesh.coordinates.empty()) {
-    throw std::invalid_argument("results: coordinates must be 3 per node, at least one node");
-  }
-  if (mesh.connectivity.empty()) throw std::invalid_argument("results: mesh has no elements");
-  m.nodes = mesh.coordinates.size() / 3;
-  m.elements = mesh.connectivity.size();
-  if (mesh.node_body.size() != m.nodes) {
-    throw std::invalid_argument("results: node_body must have one entry per node");
-  }
-  if (mesh.element_body.size() != m.elements) {
-    throw std::invalid_argument("results: element_body must have one entry per element");
-  }
-  for (const Tet10& t : mesh.connectivity) {
-    for (std::int32_t id : t) {
-      if (id < 0 || static_cast<hsize_t>(id) >= m.nodes) {
-        throw std::invalid_argument("results: connectivity refers to node " + std::to_string(id) +
-                                    " of " + std::to_string(m.nodes));
-      }
-    }
-  }
-
+  m.set_mesh(mesh);
   std::filesystem::create_directories(folder);
   // A stale results.xdmf must never point into the new results.h5.
   write_file_atomically(m.xdmf_path, m.xdmf_text(), /*durable=*/false);
@@ -290,6 +349,8 @@ ResultsWriter::ResultsWriter(const std::filesystem::path& folder, const ResultsM
   m.write_attribute_int(root, "complete", 0);
   m.write_attribute_int(root, "format_version", 1);
   m.write_attribute_string(root, "format", "femdem-results");
+  if (!options.scene_digest.empty())
+    m.write_attribute_string(root, "scene_digest", options.scene_digest);
 
   // --- mesh ---
   {
@@ -335,19 +396,29 @@ ResultsWriter::ResultsWriter(const std::filesystem::path& folder, const ResultsM
                                             H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
                                  "creating /frames/time"),
                          H5Dclose);
-    m.fields.push_back({"displacement", true, m.nodes, 3, "Vector", {}});
-    m.fields.push_back({"velocity", true, m.nodes, 3, "Vector", {}});
-    m.fields.push_back({"stress", false, m.elements, 9, "Tensor", {}});
-    m.fields.push_back({"von_mises", false, m.elements, 1, "Scalar", {}});
-    m.fields.push_back({"pressure", false, m.elements, 1, "Scalar", {}});
-    m.fields.push_back({"equivalent_plastic_strain", false, m.elements, 1, "Scalar", {}});
+    m.list_fields();
     for (FrameDataset& f : m.fields) m.create_frame_dataset(g.get(), f);
     m.write_attribute_string(m.fields[2].dset.get(), "components", "xx xy xz yx yy yz zx zy zz");
   }
-  m.stress9.resize(9 * m.elements);
 
   // From here on the file stays valid whatever happens to this process.
   m.check_status(H5Fstart_swmr_write(root), "H5Fstart_swmr_write");
+  m.open = true;
+}
+
+ResultsWriter::ResultsWriter(const std::filesystem::path& folder, const ResultsMesh& mesh,
+                             ContinueFrom from, ResultsOptions options)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& m = *impl_;
+  m.folder = folder;
+  m.h5_path = folder / kH5Name;
+  m.xdmf_path = folder / kXdmfName;
+  m.options = options;
+  m.set_mesh(mesh);
+  m.list_fields();
+  if (!std::filesystem::is_regular_file(m.h5_path))
+    throw std::runtime_error(m.h5_path.string() + " is missing: nothing to resume");
+  m.reopen(from.frames);
   m.open = true;
 }
 
@@ -431,6 +502,33 @@ void ResultsWriter::close(bool complete) {
     ::close(fd);
   }
   write_file_atomically(m.xdmf_path, m.xdmf_text(), /*durable=*/true);
+}
+
+std::string results_scene_digest(const std::filesystem::path& folder) {
+  const std::filesystem::path path = folder / kH5Name;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return "";
+  H5E_auto2_t func = nullptr;
+  void* data = nullptr;
+  H5Eget_auto2(H5E_DEFAULT, &func, &data);
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  std::string digest;
+  const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, H5P_DEFAULT);
+  if (f >= 0) {
+    if (H5Aexists(f, "scene_digest") > 0) {
+      const hid_t a = H5Aopen(f, "scene_digest", H5P_DEFAULT);
+      const hid_t t = H5Aget_type(a);
+      if (H5Tget_class(t) == H5T_STRING && !H5Tis_variable_str(t)) {
+        std::string s(H5Tget_size(t), '\0');
+        if (H5Aread(a, t, s.data()) >= 0) digest = s.substr(0, s.find('\0'));
+      }
+      H5Tclose(t);
+      H5Aclose(a);
+    }
+    H5Fclose(f);
+  }
+  H5Eset_auto2(H5E_DEFAULT, func, data);
+  return digest;
 }
 
 std::int64_t ResultsWriter::frame_count() const {

@@ -64,7 +64,12 @@ struct FrameFields {
 
 struct ResultsOptions {
   bool single_precision = false;  // store frame fields as float32 (half the size)
+  std::string scene_digest = {};  // root attribute scene_digest (io/scene/scene_digest.hpp)
 };
+
+// The scene_digest attribute of `folder`/results.h5 ("" when the file or the attribute is
+// missing): which scene the results belong to, what femdem resume checks a checkpoint against.
+std::string results_scene_digest(const std::filesystem::path& folder);
 
 class ResultsWriter {
  public:
@@ -72,6 +77,15 @@ class ResultsWriter {
   // and writes the mesh. Throws std::invalid_argument for inconsistent sizes and
   // std::runtime_error for I/O errors (naming the file).
   ResultsWriter(const std::filesystem::path& folder, const ResultsMesh& mesh,
+                ResultsOptions options = {});
+  // Continues the results of an interrupted run in `folder` (femdem resume): keeps their first
+  // `frames` frames (those written before the checkpoint the run resumes from), drops any after
+  // them, marks the file incomplete again and appends from there. Throws std::runtime_error
+  // naming the file when it is missing, holds another mesh or fewer frames.
+  struct ContinueFrom {
+    std::int64_t frames = 0;
+  };
+  ResultsWriter(const std::filesystem::path& folder, const ResultsMesh& mesh, ContinueFrom from,
                 ResultsOptions options = {});
   // Closes as close(false) if still open; never throws.
   ~ResultsWriter();

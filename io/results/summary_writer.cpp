@@ -150,6 +150,18 @@ const SummaryKey<Compaction> kKawakitaKeys[] = {
      [](const Compaction& c) { return Json(c.kawakita.points); }},
 };
 
+const SummaryKey<CheckpointSummary> kCheckpointKeys[] = {
+    {"file", "-", "the checkpoint file (in the output folder)",
+     [](const CheckpointSummary& c) { return Json(c.file); }},
+    {"time", "s", "the simulated time it holds",
+     [](const CheckpointSummary& c) { return Json(c.time); }},
+    {"step", "-", "the step it holds", [](const CheckpointSummary& c) { return Json(c.step); }},
+    {"resume", "-",
+     "the command that continues the run from it (with `--set simulation.end_time=...`: "
+     "extends it)",
+     [](const CheckpointSummary& c) { return Json(c.resume); }},
+};
+
 template <class S>
 Json object_of(std::span<const SummaryKey<S>> keys, const S& s) {
   Json j = Json::object();
@@ -194,6 +206,7 @@ std::string summary_to_json(const RunSummary& s) {
     c["kawakita"] = object_of<Compaction>(kKawakitaKeys, *s.compaction);
     j["compaction"] = std::move(c);
   }
+  if (s.checkpoint) j["checkpoint"] = object_of<CheckpointSummary>(kCheckpointKeys, *s.checkpoint);
   // Invalid UTF-8 in a name is replaced rather than thrown on: the summary must get written.
   return j.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
 }
@@ -207,6 +220,10 @@ std::string summary_keys_markdown() {
   append_table<Compaction>(md, "`compaction` (scenes with `[compaction]`):", kCompactionKeys, "");
   append_table<Compaction>(md, "`compaction.heckel`:", kHeckelKeys, "");
   append_table<Compaction>(md, "`compaction.kawakita`:", kKawakitaKeys, "");
+  append_table<CheckpointSummary>(
+      md, "`checkpoint` (the run's last checkpoint, written at the end of the run, on a signal "
+          "and periodically; `femdem resume`):",
+      kCheckpointKeys, "");
   return md;
 }
 

@@ -65,6 +65,13 @@ struct CompactionSummary {
   KawakitaFit kawakita;
 };
 
+// The run's last checkpoint (checkpoint.h5): where `femdem resume` continues from.
+struct CheckpointSummary {
+  std::string file;     // path of checkpoint.h5
+  double time = 0.0;    // s, simulated time it holds
+  std::int64_t step = 0;
+  std::string resume;   // the command that continues the run
+};
 struct RunSummary {
   std::string scene;  // scene file as given
   RunStatus status = RunStatus::completed;
@@ -79,6 +86,7 @@ struct RunSummary {
   std::vector<BodySummary> bodies;              // written as an object keyed by name, in this order
   std::map<std::string, double> extra;          // further named scalars, written under "extra"
   std::optional<CompactionSummary> compaction;  // written as "compaction" when present
+  std::optional<CheckpointSummary> checkpoint;  // written as "checkpoint" when present
 };
 
 // The JSON text (2-space indented, keys in the order of docs/OUTPUTS.md, doubles in shortest

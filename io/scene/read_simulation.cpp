@@ -17,7 +17,8 @@ void Reader::read_simulation(const toml::table& root, ModelSpec& spec, toml::tab
              {"end_time", "time_step_safety", "time_step", "output_interval", "history_interval",
               "gravity", "threads", "bulk_viscosity_linear", "bulk_viscosity_quadratic",
               "mass_scaling_time_step", "mass_scaling_limit", "deformation_damping",
-              "rest_kinetic_fraction", "rest_hold_time", "stable_step", "stable_step_interval"});
+              "rest_kinetic_fraction", "rest_hold_time", "stable_step", "stable_step_interval",
+              "checkpoint_interval", "checkpoint_wall_interval"});
   SimulationSettings& s = spec.simulation;
   s.end_time = positive(t, "end_time", p, std::nullopt, &t);
   s.time_step_safety = positive(t, "time_step_safety", p, s.time_step_safety, &t);
@@ -45,6 +46,15 @@ void Reader::read_simulation(const toml::table& root, ModelSpec& spec, toml::tab
   }
   s.output_interval = positive(t, "output_interval", p, s.end_time / 50.0, &t);
   s.history_interval = positive(t, "history_interval", p, s.output_interval / 20.0, &t);
+  for (const char* key : {"checkpoint_interval", "checkpoint_wall_interval"}) {
+    const bool wall = std::string(key) == "checkpoint_wall_interval";
+    double& v = wall ? s.checkpoint_wall_interval : s.checkpoint_interval;
+    v = number(t, key, p, v, &t);
+    if (!(v >= 0.0) || !std::isfinite(v))
+      fail(t.get(key), dotted(p, key),
+           std::string("must be 0 (off) or a positive number of ") +
+               (wall ? "wall-clock" : "simulated") + " seconds, got " + format_number(v));
+  }
   if (auto g = opt_vec3(t, "gravity", p)) s.gravity = *g;
   if (auto th = opt_integer(t, "threads", p)) {
     if (*th < 0 || *th > 4096)
@@ -107,6 +117,8 @@ void Reader::read_simulation(const toml::table& root, ModelSpec& spec, toml::tab
   if (assembled) out.insert_or_assign("stable_step_interval", s.stable_step_interval);
   out.insert_or_assign("output_interval", s.output_interval);
   out.insert_or_assign("history_interval", s.history_interval);
+  out.insert_or_assign("checkpoint_interval", s.checkpoint_interval);
+  out.insert_or_assign("checkpoint_wall_interval", s.checkpoint_wall_interval);
   out.insert_or_assign("gravity", toml::array{s.gravity.x(), s.gravity.y(), s.gravity.z()});
   out.insert_or_assign("threads", s.threads);
   out.insert_or_assign("bulk_viscosity_linear", s.bulk_viscosity_linear);

@@ -90,7 +90,40 @@ Command add_run(CLI::App& app, const std::string& exe, const std::string& comman
             if (!s->no_plot && scene.model.compaction)
               options.plot_script = femdem::find_plot_script(exe, "plot_compaction.py");
             options.command_line = command_line;
+            options.overrides = s->overrides;
             return femdem::run_scene(scene, options);
+          }};
+}
+
+Command add_resume(CLI::App& app, const std::string& exe, const std::string& command_line) {
+  struct State {
+    femdem::ResumeOptions options;
+    bool no_plot = false;
+  };
+  auto s = std::make_shared<State>();
+  CLI::App* resume = app.add_subcommand(
+      "resume",
+      "Continue a run from the checkpoint in its output folder (after a kill, a signal or a "
+      "crash; or, with a later simulation.end_time, extend a finished run), appending to its "
+      "outputs");
+  resume->add_option("out", s->options.run.out_dir, "The run's output folder")->required();
+  resume
+      ->add_option("--set", s->options.overrides,
+                   "Change what does not alter the past: simulation.end_time, output_interval, "
+                   "history_interval, checkpoint_interval, checkpoint_wall_interval, "
+                   "rest_kinetic_fraction, rest_hold_time, threads (KEY=VALUE, repeatable)")
+      ->allow_extra_args(false);
+  resume->add_option("--threads", s->options.run.threads,
+                     "Number of threads (0: all cores; default: the run's)")
+      ->check(CLI::NonNegativeNumber);
+  resume->add_flag("--quiet", s->options.run.quiet, "Print nothing but errors");
+  resume->add_flag("--no-plot", s->no_plot,
+                   "Do not call tools/plot_compaction.py after a run with [compaction]");
+  return {resume, [s, exe, command_line] {
+            femdem::ResumeOptions& o = s->options;
+            o.run.command_line = command_line;
+            if (!s->no_plot) o.run.plot_script = femdem::find_plot_script(exe, "plot_compaction.py");
+            return femdem::resume_run(o);
           }};
 }
 
@@ -264,7 +297,8 @@ int main(int argc, char** argv) {
       "Exit codes: 0 success, 2 bad input, 3 the simulation became unstable, 1 other errors.\n"
       "Scene keys: docs/SCENES.md");
   const std::string exe = self_exe(argv[0]);
-  const Command commands[] = {add_run(app, exe, command_line_of(argc, argv)), add_check(app),
+  const Command commands[] = {add_run(app, exe, command_line_of(argc, argv)),
+                              add_resume(app, exe, command_line_of(argc, argv)), add_check(app),
                               add_sweep(app, exe), add_pack(app), add_mesh(app)};
   try {
     app.parse(argc, argv);

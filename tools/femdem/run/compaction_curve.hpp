@@ -7,6 +7,7 @@
 
 #include "engine/compaction.hpp"
 #include "io/results/summary_writer.hpp"
+#include "engine/state_archive.hpp"
 
 namespace femdem {
 
@@ -18,6 +19,12 @@ class CompactionCurve {
   CompactionSummary summarise() const;
   // wall time spent sampling the compaction columns (docs/PERFORMANCE.md)
   double sample_time_s = 0.0;
+
+  void exchange_state(StateArchive& a) {
+    const StateArchive::Scope scope(a, "compaction_curve");
+    a.array("samples", curve_, StateArchive::Length::variable);
+    a.value("sample_time_s", sample_time_s);
+  }
 
  private:
   const CompactionMonitor& monitor_;

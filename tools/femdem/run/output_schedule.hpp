@@ -4,6 +4,7 @@
 // it lands on end_time exactly. Times within 1e-9 end_time of a due time count as due, so
 // round-off in the accumulated time neither skips nor doubles an output.
 #include <cmath>
+#include "engine/state_archive.hpp"
 
 namespace femdem {
 
@@ -33,6 +34,14 @@ class OutputSchedule {
     const double remaining = end_ - t;
     if (remaining >= 1.5 * dt) return HUGE_VAL;
     return remaining > dt ? 0.5 * remaining : remaining;
+  }
+
+  // Saves or loads the next due times (the intervals and the end time are the resumed run's
+  // own: the run's unless the resume sets them).
+  void exchange_state(StateArchive& a) {
+    const StateArchive::Scope scope(a, "output_schedule");
+    a.value("next_frame", next_frame_);
+    a.value("next_history", next_history_);
   }
 
  private:

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "tools/femdem/run/history_sample.hpp"
+#include "engine/state_archive.hpp"
 
 namespace femdem {
 
@@ -51,6 +52,21 @@ class PeakMonitor {
   double wall_penetration_per_size() const { return wall_per_size_; }
   double wall_penetration_per_size_time() const { return wall_per_size_time_; }
   std::size_t wall_penetration_per_size_wall() const { return wall_per_size_index_; }
+
+  void exchange_state(StateArchive& a) {
+    const StateArchive::Scope scope(a, "peaks");
+    a.array("principal", principal_);
+    a.array("principal_time", principal_time_);
+    a.value("penetration", penetration_);
+    a.value("penetration_time", penetration_time_);
+    a.value("penetration_per_size", penetration_per_size_);
+    a.value("penetration_per_size_time", penetration_per_size_time_);
+    a.value("wall_penetration", wall_penetration_);
+    a.value("wall_per_size", wall_per_size_);
+    a.value("wall_per_size_time", wall_per_size_time_);
+    a.value("wall_per_size_index", wall_per_size_index_);
+    a.value("warned", warned_);
+  }
 
  private:
   std::vector<double> principal_, principal_time_;

@@ -3,6 +3,8 @@
 // Stop at rest (simulation.rest_kinetic_fraction, docs/SCENES.md): the run is at rest once the
 // total kinetic energy has stayed below `fraction` of its peak so far for `hold` seconds,
 // checked at the history rows.
+#include "engine/state_archive.hpp"
+
 namespace femdem {
 
 class RestMonitor {
@@ -26,6 +28,18 @@ class RestMonitor {
   double hold() const { return hold_; }
   double peak() const { return peak_; }
   double peak_time() const { return peak_time_; }
+
+  // Forgets a rest found (or being timed) under other criteria, keeping the peak: a resumed run
+  // whose criteria changed looks for rest by its own.
+  void rearm() { below_since_ = -1.0, rest_time_ = -1.0; }
+  // Saves or loads what it has seen (the criteria are the resumed run's own).
+  void exchange_state(StateArchive& a) {
+    const StateArchive::Scope scope(a, "rest");
+    a.value("peak", peak_);
+    a.value("peak_time", peak_time_);
+    a.value("below_since", below_since_);
+    a.value("rest_time", rest_time_);
+  }
 
  private:
   double fraction_, hold_;

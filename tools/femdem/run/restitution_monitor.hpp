@@ -8,6 +8,7 @@
 
 #include "engine/simulation.hpp"
 #include "io/results/summary_writer.hpp"
+#include "engine/state_archive.hpp"
 
 namespace femdem {
 
@@ -32,6 +33,18 @@ class RestitutionMonitor {
   std::optional<Restitution> result() const {
     if (!touched_ || in_contact_ || speed_before_ <= 0.0 || ke_before_ <= 0.0) return std::nullopt;
     return Restitution{speed_after_ / speed_before_, std::sqrt(ke_after_ / ke_before_)};
+  }
+
+  // One body's monitor, under the caller's scope.
+  void exchange_state(StateArchive& a) {
+    a.value("touched", touched_);
+    a.value("in_contact", in_contact_);
+    a.value("speed_before", speed_before_);
+    a.value("ke_before", ke_before_);
+    a.value("speed_after", speed_after_);
+    a.value("ke_after", ke_after_);
+    a.value("last_speed", last_speed_);
+    a.value("last_ke", last_ke_);
   }
 
  private:

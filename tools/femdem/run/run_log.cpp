@@ -7,8 +7,10 @@
 
 namespace femdem {
 
-RunLog::RunLog(const std::filesystem::path& path, bool quiet) : file_(path), quiet_(quiet) {
-  if (!file_) throw std::runtime_error("cannot create " + path.string());
+RunLog::RunLog(const std::filesystem::path& path, bool quiet, bool append)
+    : file_(path, append ? std::ios::app : std::ios::trunc), quiet_(quiet) {
+  if (!file_) throw std::runtime_error(std::string(append ? "cannot open " : "cannot create ") +
+                                       path.string());
 }
 
 void RunLog::say(const std::string& line) {

@@ -11,8 +11,9 @@ namespace femdem {
 
 class RunLog {
  public:
-  // Creates (truncates) `path`. Throws std::runtime_error if it cannot.
-  RunLog(const std::filesystem::path& path, bool quiet);
+  // Creates (truncates) `path`, or with `append` (femdem resume) adds to its end. Throws
+  // std::runtime_error if it cannot.
+  RunLog(const std::filesystem::path& path, bool quiet, bool append = false);
   void say(const std::string& line);        // standard output (unless quiet) and the log
   void file_only(const std::string& text);  // the log only, as is
   void error(const std::string& line);      // the log only: the caller prints errors itself

@@ -23,6 +23,8 @@
 #include "io/results/history_writer.hpp"
 #include "io/results/results_writer.hpp"
 #include "io/results/summary_writer.hpp"
+#include "io/checkpoint/checkpoint_file.hpp"
+#include "io/scene/scene_digest.hpp"
 #include "tools/femdem/run/compaction_curve.hpp"
 #include "tools/femdem/run/output_schedule.hpp"
 #include "tools/femdem/run/output_tables.hpp"
@@ -31,6 +33,7 @@
 #include "tools/femdem/run/progress_line.hpp"
 #include "tools/femdem/run/rest_monitor.hpp"
 #include "tools/femdem/run/restitution_monitor.hpp"
+#include "tools/femdem/run/run_checkpoint.hpp"
 #include "tools/femdem/run/run_log.hpp"
 #include "tools/femdem/run/run_summary.hpp"
 
@@ -209,9 +212,39 @@ void plot_compaction(const std::string& script, const std::filesystem::path& out
             "; see run.log)");
 }
 
-}  // namespace
 
-int run_scene(const SceneFile& scene, const RunOptions& options) {
+// How a run starts: afresh, or from the checkpoint in its folder (femdem resume).
+struct ResumePoint {
+  CheckpointInfo info;
+  bool rearm_rest = false;  // the resume changed the rest criteria: look for rest anew
+};
+
+std::string version_text() {
+  return std::string(FEMDEM_VERSION) + " (" + FEMDEM_GIT_REVISION + ")";
+}
+
+void say_resumed(RunLog& log, const RunOptions& options, const ResumePoint& r) {
+  std::ostringstream head;
+  const std::time_t now = std::time(nullptr);
+  char date[64];
+  std::strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S", std::localtime(&now));
+  head << "\n# resumed\nfemdem " << version_text() << ", " << date << "\n"
+       << "command: " << options.command_line << "\n";
+  log.file_only(head.str());
+  char buf[300];
+  std::snprintf(buf, sizeof buf,
+                "resumed from %s at t = %.6g s, step %lld (written by femdem %s); the history "
+                "rows and frames after it are replaced",
+                kCheckpointFile, r.info.time, static_cast<long long>(r.info.step),
+                r.info.femdem_version.c_str());
+  log.say(buf);
+  if (r.info.femdem_version != version_text())
+    log.say("warning: the checkpoint was written by another femdem (" + r.info.femdem_version +
+            "); the steps after it may differ in the last bits from an uninterrupted run");
+}
+
+int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
+            const ResumePoint* resume) {
   const auto wall_start = Clock::now();
   ModelSpec spec = scene.model;
   const int threads = use_threads(options.threads, spec.simulation.threads);
@@ -222,24 +255,16 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
   // Everything that can fail on bad input happens before the first file is written.
   Simulation sim(build_model(spec));
   const Model& m = sim.model();
-  const double setup_time = seconds_since(wall_start);
-
   const std::filesystem::path out = options.out_dir;
-  std::filesystem::create_directories(out);
-  // A summary from an earlier run must not sit next to this run's partial outputs.
-  std::filesystem::remove(out / "summary.json");
-  RunLog log(out / "run.log", options.quiet);
-  write_log_header(log, scene, options);
-  say_model(log, scene, sim, threads);
+  const std::filesystem::path checkpoint_path = out / kCheckpointFile;
+  const std::string digest = scene_digest(scene.resolved_toml);
+  origin.resolved_toml = scene.resolved_toml;
 
-  // outputs
   HistoryLayout layout;
   for (const auto& b : m.bodies) layout.bodies.push_back(b.name);
   for (const auto& w : m.walls) layout.walls.push_back(w.name);
   layout.body_contact = sim.body_contact().active();
   layout.compaction = spec.compaction.has_value();
-  ResultsWriter results(out, ResultsMesh{m.X, m.conn, m.node_body, m.element_body, layout.bodies});
-  HistoryWriter history(out / "history.csv", history_columns(layout));
   OutputSchedule schedule(set.end_time, set.output_interval, set.history_interval);
 
   // monitors
@@ -254,11 +279,82 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
     curve.emplace(*compaction, set.end_time / set.history_interval);
   }
 
+  // What a checkpoint holds, saved and loaded by the same function: the engine, the monitors,
+  // the outputs' counts and the run's origin.
+  OutputCounts counts;
+  double earlier_wall_s = 0.0, earlier_loop_s = 0.0;  // of the run before this resume
+  auto loop_start = Clock::now();
+  auto exchange_run = [&](StateArchive& a) {
+    sim.exchange_state(a);
+    const StateArchive::Scope scope(a, "run");
+    RunOrigin stored = origin;
+    exchange_origin(a, stored);
+    schedule.exchange_state(a);
+    peaks.exchange_state(a);
+    rest.exchange_state(a);
+    for (std::size_t b = 0; b < restitution.size(); ++b) {
+      const StateArchive::Scope body(a, "restitution/" + std::to_string(b));
+      restitution[b].exchange_state(a);
+    }
+    if (compaction) {
+      compaction->exchange_state(a);
+      curve->exchange_state(a);
+    }
+    counts.exchange_state(a);
+    double wall_s = earlier_wall_s + seconds_since(wall_start);
+    double loop_s = earlier_loop_s + seconds_since(loop_start);
+    a.value("wall_time_s", wall_s);
+    a.value("loop_time_s", loop_s);
+    if (!a.saving()) earlier_wall_s = wall_s, earlier_loop_s = loop_s;
+  };
+  if (resume) {
+    try {
+      read_checkpoint(checkpoint_path, exchange_run);
+    } catch (const CheckpointError& e) {
+      throw InputError(e.what(), checkpoint_path.string());
+    }
+    if (resume->rearm_rest) rest.rearm();
+  }
+  const double setup_time = seconds_since(wall_start);
+
+  // outputs: a new run replaces what an earlier run left in the folder; a resumed run cuts its
+  // outputs back to the checkpoint (checking all of them before changing any)
+  const ResultsMesh mesh{m.X, m.conn, m.node_body, m.element_body, layout.bodies};
+  std::optional<ResultsWriter> results;
+  std::optional<HistoryWriter> history;
+  std::optional<RunLog> log_file;
+  if (!resume) {
+    std::filesystem::create_directories(out);
+    // A summary or checkpoint from an earlier run must not sit next to this run's outputs.
+    std::filesystem::remove(out / "summary.json");
+    std::filesystem::remove(checkpoint_path);
+    log_file.emplace(out / "run.log", options.quiet);
+    write_log_header(*log_file, scene, options);
+    say_model(*log_file, scene, sim, threads);
+    results.emplace(out, mesh, ResultsOptions{.scene_digest = digest});
+    history.emplace(out / "history.csv", history_columns(layout));
+  } else {
+    const HistoryWriter::ContinueAt at{counts.history_bytes, counts.history_rows};
+    try {
+      HistoryWriter::check_continuable(out / "history.csv", history_columns(layout), at);
+      results.emplace(out, mesh, ResultsWriter::ContinueFrom{counts.frames},
+                      ResultsOptions{.scene_digest = digest});
+    } catch (const std::runtime_error& e) {
+      throw InputError(std::string("cannot resume: ") + e.what(), out.string());
+    }
+    history.emplace(out / "history.csv", history_columns(layout), at);
+    std::filesystem::remove(out / "summary.json");
+    log_file.emplace(out / "run.log", options.quiet, /*append=*/true);
+    say_resumed(*log_file, options, *resume);
+    say_model(*log_file, scene, sim, threads);
+  }
+  RunLog& log = *log_file;
+
   std::vector<double> disp(m.X.size()), s6, vm, pr, ep, row;
   auto write_frame = [&] {
     for (std::size_t i = 0; i < disp.size(); ++i) disp[i] = m.x[i] - m.X[i];
     sim.element_stress(s6, vm, pr, ep);
-    results.write_frame(sim.time(), FrameFields{disp, m.v, s6, vm, pr, ep});
+    results->write_frame(sim.time(), FrameFields{disp, m.v, s6, vm, pr, ep});
     schedule.frame_written(sim.time());
   };
   HistorySample sample;
@@ -274,7 +370,7 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
     if (peaks.overlap_warning_due()) warn_overlap(log, m, peaks);
     rest.observe(sample.time, sample.energies.kinetic);
     history_row(sample, row);
-    history.write_row(row);
+    history->write_row(row);
     schedule.history_written(sim.time());
   };
   std::vector<BodyState> motions;
@@ -283,16 +379,35 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
     for (std::size_t b = 0; b < m.bodies.size(); ++b) restitution[b].observe(motions[b]);
   };
 
-  auto loop_start = Clock::now();
+  // checkpoints: periodically, before the last steps (the point a later end time extends the
+  // run from), at rest and on a signal
+  CheckpointClock clock(set.checkpoint_interval, set.checkpoint_wall_interval, sim.time());
+  std::optional<CheckpointSummary> last_checkpoint;
+  double checkpoint_time_s = 0.0;
+  std::int64_t checkpoints = 0;
+  auto write_checkpoint_now = [&] {
+    const auto t0 = Clock::now();
+    history->flush();
+    counts = {history->bytes_written(), history->rows(), results->frame_count()};
+    const CheckpointInfo info{kCheckpointFormat, version_text(), digest, sim.time(), sim.steps()};
+    write_checkpoint(checkpoint_path, info, exchange_run);
+    clock.written(sim.time());
+    last_checkpoint = CheckpointSummary{checkpoint_path.string(), sim.time(), sim.steps(),
+                                        "femdem resume " + out.string()};
+    checkpoint_time_s += seconds_since(t0);
+    ++checkpoints;
+  };
+
   auto finish_summary = [&](RunStatus status) {
     const RunRecord record{.sim = sim,
                            .setup_time_s = setup_time,
-                           .loop_time_s = seconds_since(loop_start),
+                           .loop_time_s = earlier_loop_s + seconds_since(loop_start),
                            .rest = rest,
                            .peaks = peaks,
                            .compaction = curve ? &*curve : nullptr};
-    const RunIdentity id{scene.path, threads, seconds_since(wall_start)};
-    const RunSummary summary = make_run_summary(record, id, restitution, status);
+    const RunIdentity id{scene.path, threads, earlier_wall_s + seconds_since(wall_start)};
+    RunSummary summary = make_run_summary(record, id, restitution, status);
+    summary.checkpoint = last_checkpoint;
     write_summary(out / "summary.json", summary);
     return summary;
   };
@@ -300,42 +415,137 @@ int run_scene(const SceneFile& scene, const RunOptions& options) {
   const StopSignals signals;
   ProgressLine progress(options.quiet, set.end_time);
   loop_start = Clock::now();
+  bool before_last_steps = false;
   try {
-    // the initial state is frame 0 and history row 0 (the schedule's first due times are one
-    // interval on)
-    write_frame();
-    observe_step();
-    write_history();
-    while (!schedule.finished(sim.time())) {
-      sim.step(schedule.step_limit(sim.time(), sim.dt()));
+    if (!resume) {
+      // the initial state is frame 0 and history row 0 (the schedule's first due times are one
+      // interval on)
+      write_frame();
+      observe_step();
+      write_history();
+    }
+    // (a run resumed from its checkpoint at rest, with the same criteria, is done)
+    while (!schedule.finished(sim.time()) && !rest.at_rest()) {
+      const double limit = schedule.step_limit(sim.time(), sim.dt());
+      if (limit < sim.dt() && !before_last_steps) {
+        // the state a resume with a later end time continues from, as the longer run has it
+        write_checkpoint_now();
+        before_last_steps = true;
+      }
+      sim.step(limit);
       observe_step();
       if (schedule.history_due(sim.time())) write_history();
       if (schedule.frame_due(sim.time()) || rest.at_rest()) write_frame();
-      if (signals.received() != 0 || rest.at_rest()) break;
+      // (none after the one before the last steps: a later end time extends the run from it)
+      if (signals.received() != 0 || rest.at_rest()) {
+        if (!before_last_steps) write_checkpoint_now();
+        break;
+      }
+      if (!before_last_steps && clock.due(sim.time())) write_checkpoint_now();
       progress.update(sim);
     }
   } catch (const InstabilityError& e) {
     progress.break_line();
-    history.close();
-    results.close(false);
+    history->close();
+    results->close(false);
     finish_summary(RunStatus::unstable);
     log.error(std::string("error: the simulation became unstable: ") + e.what());
     throw;
   }
   progress.clear();
-  history.close();
+  history->close();
+  if (checkpoints > 0) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "%lld checkpoint%s written in %.3g s in all",
+                  static_cast<long long>(checkpoints), checkpoints == 1 ? "" : "s",
+                  checkpoint_time_s);
+    log.file_only(std::string(buf) + "\n");
+  }
   if (signals.received() != 0) {
-    results.close(false);
+    results->close(false);
     finish_summary(RunStatus::interrupted);
     log.say("interrupted by signal " + std::to_string(signals.received()) +
-            " at t = " + std::to_string(sim.time()) + " s; the frames written so far are readable");
+            " at t = " + std::to_string(sim.time()) +
+            " s; the frames written so far are readable. Continue with: femdem resume " +
+            out.string());
     return 1;
   }
-  results.close(true);
+  results->close(true);
   const RunSummary summary = finish_summary(RunStatus::completed);
   say_outcome(log, sim, rest, summary.wall_time_s, out);
   if (compaction && !options.plot_script.empty()) plot_compaction(options.plot_script, out, log);
   return 0;
+}
+
+}  // namespace
+
+int run_scene(const SceneFile& scene, const RunOptions& options) {
+  std::error_code ec;
+  RunOrigin origin{std::filesystem::absolute(scene.path, ec).string(), options.overrides, {}};
+  return execute(scene, std::move(origin), options, nullptr);
+}
+
+int resume_run(const ResumeOptions& options) {
+  const std::filesystem::path out = options.run.out_dir;
+  const std::filesystem::path checkpoint = out / kCheckpointFile;
+  ResumePoint point;
+  RunOrigin origin;
+  try {
+    point.info = read_checkpoint_info(checkpoint);
+    origin = read_run_origin(checkpoint);
+  } catch (const CheckpointError& e) {
+    throw InputError(e.what(), checkpoint.string());
+  }
+  // the checkpoint must be this folder's (a copied one would splice two runs)
+  const std::string results_digest = results_scene_digest(out);
+  if (results_digest != point.info.scene_digest)
+    throw InputError("the checkpoint does not belong to this folder's run: it holds scene " +
+                         point.info.scene_digest + ", results.h5 " +
+                         (results_digest.empty() ? std::string("no scene digest (missing?)")
+                                                 : "scene " + results_digest),
+                     checkpoint.string());
+  // only what does not alter the past may change
+  const std::vector<std::string>& allowed = resumable_keys();
+  bool rest_off = false;
+  std::vector<std::string> given;
+  for (const std::string& o : options.overrides) {
+    const std::string key = o.substr(0, o.find('='));
+    if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
+      std::string list;
+      for (const std::string& k : allowed) list += (list.empty() ? "" : ", ") + k;
+      throw InputError("--set " + key +
+                           ": a resumed run may change only what does not alter the past (" +
+                           list + ")",
+                       "", 0, 0, key);
+    }
+    given.push_back(key);
+    if (key == "simulation.rest_kinetic_fraction" || key == "simulation.rest_hold_time")
+      point.rearm_rest = true;
+    if (key == "simulation.rest_kinetic_fraction") {
+      const std::string v = o.substr(o.find('=') + 1);
+      rest_off = v == "0" || v == "0.0";
+    }
+  }
+  // the run's own overrides, then the resumable settings as the run had them, then the new ones
+  std::vector<std::string> overrides = origin.overrides;
+  for (const std::string& s : resumable_settings(origin.resolved_toml)) {
+    const std::string key = s.substr(0, s.find('='));
+    if (std::find(given.begin(), given.end(), key) != given.end()) continue;
+    if (rest_off && key == "simulation.rest_hold_time") continue;
+    overrides.push_back(s);
+  }
+  overrides.insert(overrides.end(), options.overrides.begin(), options.overrides.end());
+  const SceneFile scene = load_scene(origin.scene_path, overrides);
+  if (scene_digest(scene.resolved_toml) != point.info.scene_digest) {
+    const std::string was = scene_identity_text(origin.resolved_toml);
+    const std::string now = scene_identity_text(scene.resolved_toml);
+    throw InputError("the scene has changed since the run started, so the checkpoint does not "
+                     "belong to it: the run had `" +
+                         first_differing_line(was, now) + "` where the scene now gives `" +
+                         first_differing_line(now, was) + "`",
+                     origin.scene_path);
+  }
+  return execute(scene, std::move(origin), options.run, &point);
 }
 
 }  // namespace femdem

@@ -150,6 +150,25 @@ std::size_t keep_completed(const fs::path& dir, std::vector<Run>& runs) {
   return skipped;
 }
 
+// Marks the runs that were interrupted in `dir` (a checkpoint, no completed summary) with the
+// same resolved scene as to be resumed from their checkpoints; returns how many.
+std::size_t mark_resumable(const fs::path& dir, std::vector<Run>& runs) {
+  std::size_t resumable = 0;
+  for (auto& r : runs) {
+    if (r.outcome != Outcome::pending) continue;
+    const fs::path rd = dir / r.name;
+    if (!fs::exists(rd / "checkpoint.h5")) continue;
+    // killed (no summary) or stopped by a signal; a diverged run is run again from the start
+    const auto summary = read_summary(rd / "summary.json");
+    if (summary && summary->is_object() && summary->value("status", "") != "interrupted") continue;
+    const auto logged = logged_resolved_scene(rd / "run.log");
+    if (!logged || *logged != r.resolved) continue;
+    r.resume = true;
+    ++resumable;
+  }
+  return resumable;
+}
+
 // tools/plot_sweep.py DIR, with the system python first (tools/setup installs matplotlib there,
 // as the script's #! line expects), then whatever python3 is on the PATH.
 template <class Say>
@@ -250,6 +269,7 @@ int run_sweep(const SweepOptions& opt) {
       opt.out_dir.empty() ? fs::path("out") / (base.stem + "_sweep") : fs::path(opt.out_dir);
   fs::create_directories(dir);
   const std::size_t skipped = keep_completed(dir, runs);
+  const std::size_t resumable = mark_resumable(dir, runs);
   const fs::path csv = dir / "sweep.csv";
   auto write_csv = [&] { write_file_atomically(csv, csv_text(axes, runs), /*durable=*/false); };
   write_csv();
@@ -269,6 +289,8 @@ int run_sweep(const SweepOptions& opt) {
     if (to_run)
       s += "; running " + std::to_string(to_run) + ", " + std::to_string(jobs) + " at a time, " +
            std::to_string(tpj) + " thread" + (tpj == 1 ? "" : "s") + " each";
+    if (resumable)
+      s += " (" + std::to_string(resumable) + " of them resumed from their checkpoints)";
     say(s);
     if (skipped && !opt.quiet)
       for (const auto& r : runs)
@@ -297,13 +319,19 @@ int run_sweep(const SweepOptions& opt) {
       }
       const fs::path rd = dir / r.name;
       fs::create_directories(rd);
-      std::vector<std::string> args = {opt.femdem_exe, "run",       opt.scene_path,      "--out",
-                                       rd.string(),    "--threads", std::to_string(tpj), "--quiet"};
+      std::vector<std::string> args;
+      if (r.resume) {
+        // the run's own scene and overrides are in its checkpoint
+        args = {opt.femdem_exe, "resume", rd.string(), "--threads", std::to_string(tpj), "--quiet"};
+      } else {
+        args = {opt.femdem_exe, "run",       opt.scene_path,      "--out",
+                rd.string(),    "--threads", std::to_string(tpj), "--quiet"};
+        for (const auto& s : opt.overrides) args.insert(args.end(), {"--set", s});
+        for (std::size_t a = 0; a < axes.size(); ++a)
+          args.insert(args.end(), {"--set", axes[a].key + "=" + r.values[a]});
+      }
       // a run of a compaction scene draws its own plots unless the sweep is told not to plot
       if (!opt.plot) args.push_back("--no-plot");
-      for (const auto& s : opt.overrides) args.insert(args.end(), {"--set", s});
-      for (std::size_t a = 0; a < axes.size(); ++a)
-        args.insert(args.end(), {"--set", axes[a].key + "=" + r.values[a]});
       const pid_t pid = spawn(args, (rd / "console.txt").string(), false);
       if (pid < 0) {
         r.outcome = Outcome::failed;

@@ -30,6 +30,7 @@ struct Run {
   int exit_code = 0;
   Fields fields;  // flattened summary.json
   double started = 0.0;
+  bool resume = false;  // interrupted with a checkpoint of the same scene: resumed, not rerun
 };
 
 // Gives every axis the shortest tail of its dotted key that tells it from the others.

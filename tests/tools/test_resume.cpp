@@ -1,0 +1,443 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// `femdem resume`: a run killed (SIGKILL at a random moment, or SIGTERM) and resumed from its
+// checkpoint gives the same bits as the run made without interruption: summary.json (all but
+// the wall timings), history.csv byte for byte, every frame of results.h5; with 1 and 2
+// threads. Extending a finished run equals the longer run made from the start. A missing,
+// damaged or foreign checkpoint, a changed scene and a key that would alter the past exit 2
+// and change nothing in the folder.
+//
+// The scenes use every stateful feature: the four plasticity models, wall and body friction,
+// mass scaling, impact and deformation damping and rest detection (four spheres hitting a floor
+// and each other); a force-driven punch in a die of walls with [compaction] (a cube and a
+// sphere on it).
+#include <gtest/gtest.h>
+#include <hdf5.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "support/run_command.hpp"
+
+extern char** environ;
+
+namespace femdem::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* const kEveryFeature = R"(title = "restart: every stateful feature"
+[simulation]
+end_time = 1.2e-3
+output_interval = 1e-4
+history_interval = 1e-5
+gravity = [0.0, 0.0, -9.81]
+mass_scaling_time_step = 2.5e-7
+mass_scaling_limit = 1.0
+deformation_damping = { ratio = 0.05, frequency = 5000.0 }
+rest_kinetic_fraction = 1e-3
+rest_hold_time = 1e-4
+checkpoint_interval = 1e-4
+
+[[materials]]
+name = "metal"
+model = "von_mises"
+density = 2700.0
+youngs_modulus = 70e9
+poisson_ratio = 0.3
+yield_stress = 30e6
+hardening_modulus = 300e6
+
+[[materials]]
+name = "rock_dp"
+model = "drucker_prager"
+density = 2500.0
+youngs_modulus = 30e9
+poisson_ratio = 0.25
+cohesion = 4e6
+friction_angle = 30.0
+dilatancy_angle = 10.0
+
+[[materials]]
+name = "rock_mc"
+model = "mohr_coulomb"
+density = 2500.0
+youngs_modulus = 30e9
+poisson_ratio = 0.25
+cohesion = 4e6
+friction_angle = 30.0
+cohesion_hardening_modulus = -2e6
+residual_cohesion = 1e6
+
+[[materials]]
+name = "rock_pdp"
+model = "piecewise_drucker_prager"
+density = 2500.0
+youngs_modulus = 30e9
+poisson_ratio = 0.25
+pieces = [[0.42, 8e6], [0.30, 14e6], [0.14, 30e6]]
+
+[[bodies]]
+name = "a"
+material = "metal"
+mesh = { generator = "sphere", radius = 4e-3, element_size = 2.5e-3 }
+position = [-6e-3, 0.0, 4.2e-3]
+velocity = [5.0, 0.0, -8.0]
+
+[[bodies]]
+name = "b"
+material = "rock_dp"
+mesh = { generator = "sphere", radius = 4e-3, element_size = 2.5e-3 }
+position = [6e-3, 0.0, 4.4e-3]
+velocity = [-5.0, 0.0, -6.0]
+angular_velocity = [0.0, 300.0, 0.0]
+
+[[bodies]]
+name = "c"
+material = "rock_mc"
+mesh = { generator = "sphere", radius = 4e-3, element_size = 2.5e-3 }
+position = [0.0, 9e-3, 4.3e-3]
+velocity = [0.0, -2.0, -8.0]
+
+[[bodies]]
+name = "d"
+material = "rock_pdp"
+mesh = { generator = "sphere", radius = 4e-3, element_size = 2.5e-3 }
+position = [0.0, -9e-3, 4.3e-3]
+velocity = [0.0, 2.0, -8.0]
+
+[[walls]]
+name = "floor"
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 1.0]
+friction = 0.4
+damping = 0.05
+
+[contact]
+friction = 0.3
+impact_damping = 0.1
+)";
+
+const char* const kDie = R"(title = "restart: force-driven punch in a die"
+[simulation]
+end_time = 4e-4
+output_interval = 4e-5
+history_interval = 4e-6
+checkpoint_interval = 4e-5
+
+[[materials]]
+name = "aluminium"
+model = "von_mises"
+density = 2700.0
+youngs_modulus = 70e9
+poisson_ratio = 0.3
+yield_stress = 100e6
+hardening_modulus = 700e6
+
+[[bodies]]
+name = "cube"
+material = "aluminium"
+mesh = { generator = "box", size = [8e-3, 8e-3, 6e-3], element_size = 3e-3 }
+position = [-4e-3, -4e-3, 0.0]
+
+[[bodies]]
+name = "ball"
+material = "aluminium"
+mesh = { generator = "sphere", radius = 2.5e-3, element_size = 2.5e-3 }
+position = [0.0, 0.0, 8.6e-3]
+
+[[walls]]
+name = "bottom"
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 1.0]
+friction = 0.2
+
+[[walls]]
+name = "punch"
+point = [0.0, 0.0, 11.2e-3]
+normal = [0.0, 0.0, -1.0]
+force_history = [[0.0, 0.0], [2e-4, 4e4], [4e-4, 4e4]]
+mass = 0.2
+velocity = [0.0, 0.0, -2.0]
+
+[[walls]]
+name = "left"
+point = [-4e-3, 0.0, 0.0]
+normal = [1.0, 0.0, 0.0]
+friction = 0.2
+[[walls]]
+name = "right"
+point = [4e-3, 0.0, 0.0]
+normal = [-1.0, 0.0, 0.0]
+friction = 0.2
+[[walls]]
+name = "front"
+point = [0.0, -4e-3, 0.0]
+normal = [0.0, 1.0, 0.0]
+friction = 0.2
+[[walls]]
+name = "back"
+point = [0.0, 4e-3, 0.0]
+normal = [0.0, -1.0, 0.0]
+friction = 0.2
+
+[contact]
+friction = 0.2
+
+[compaction]
+punch = "punch"
+bottom = "bottom"
+die_walls = ["left", "right", "front", "back"]
+die_area = 6.4e-5
+die_perimeter = 32e-3
+)";
+
+fs::path tmp_dir() { return fs::path(FEMDEM_TEST_TMP) / "resume"; }
+
+fs::path write_scene(const std::string& name, const char* text) {
+  fs::create_directories(tmp_dir());
+  const fs::path p = tmp_dir() / (name + ".toml");
+  std::ofstream(p) << text;
+  return p;
+}
+
+std::string quoted(const fs::path& p) {
+  std::string q = "'";  // appended piece by piece: GCC 12 warns (-Wrestrict) on "'" + string
+  q += p.string();
+  q += '\'';
+  return q;
+}
+
+CommandResult femdem(const std::string& args) {
+  return run_command(std::string("'") + FEMDEM_EXE + "' " + args);
+}
+
+CommandResult run(const fs::path& scene, const fs::path& out, const std::string& options = "") {
+  fs::remove_all(out);
+  return femdem("run " + quoted(scene) + " --quiet --out " + quoted(out) + " " + options);
+}
+
+CommandResult resume(const fs::path& out, const std::string& options = "") {
+  return femdem("resume " + quoted(out) + " --quiet " + options);
+}
+
+// Starts `femdem run`, waits until a checkpoint exists and then a random 0-400 ms more, and
+// sends `sig`. Returns false if the run ended before it could be signalled.
+bool run_and_signal(const fs::path& scene, const fs::path& out, int threads, int sig,
+                    unsigned seed) {
+  fs::remove_all(out);
+  const std::string threads_text = std::to_string(threads);
+  std::vector<std::string> args = {FEMDEM_EXE, "run",     scene.string(), "--quiet",
+                                   "--out",    out.string(), "--threads", threads_text};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  if (posix_spawn(&pid, FEMDEM_EXE, nullptr, nullptr, argv.data(), environ) != 0) return false;
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (!fs::exists(out / "checkpoint.h5") && std::chrono::steady_clock::now() < give_up) {
+    if (waitpid(pid, nullptr, WNOHANG) == pid) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  std::mt19937 rng(seed);
+  std::this_thread::sleep_for(std::chrono::milliseconds(rng() % 400));
+  int status = 0;
+  if (waitpid(pid, &status, WNOHANG) == pid) return false;  // finished first
+  kill(pid, sig);
+  waitpid(pid, &status, 0);
+  return true;
+}
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// summary.json without what measures the machine rather than the run.
+nlohmann::json comparable_summary(const fs::path& out) {
+  nlohmann::json j = nlohmann::json::parse(read_text(out / "summary.json"));
+  j.erase("wall_time_s");
+  j.erase("threads");
+  for (const char* k : {"setup_time_s", "loop_time_s", "element_updates_per_s", "compaction_time_s"})
+    j["extra"].erase(k);
+  j["checkpoint"].erase("file");
+  j["checkpoint"].erase("resume");
+  return j;
+}
+
+// Every dataset under /frames of results.h5, as bytes.
+std::vector<std::vector<char>> frames(const fs::path& out) {
+  std::vector<std::vector<char>> data;
+  const hid_t f = H5Fopen((out / "results.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0) return data;
+  for (const char* name : {"time", "displacement", "velocity", "stress", "von_mises", "pressure",
+                           "equivalent_plastic_strain"}) {
+    const hid_t d = H5Dopen2(f, (std::string("/frames/") + name).c_str(), H5P_DEFAULT);
+    const hid_t s = H5Dget_space(d);
+    std::vector<char> bytes(static_cast<std::size_t>(H5Sget_simple_extent_npoints(s)) * 8);
+    if (!bytes.empty()) H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, bytes.data());
+    data.push_back(std::move(bytes));
+    H5Sclose(s);
+    H5Dclose(d);
+  }
+  H5Fclose(f);
+  return data;
+}
+
+void expect_same_run(const fs::path& reference, const fs::path& out) {
+  EXPECT_EQ(comparable_summary(reference), comparable_summary(out));
+  EXPECT_TRUE(read_text(reference / "history.csv") == read_text(out / "history.csv"))
+      << "history.csv differs from the uninterrupted run's";
+  const auto a = frames(reference), b = frames(out);
+  ASSERT_EQ(a.size(), 7u);
+  ASSERT_EQ(b.size(), 7u);
+  const char* names[] = {"time", "displacement", "velocity", "stress", "von_mises", "pressure",
+                         "equivalent_plastic_strain"};
+  for (std::size_t i = 0; i < a.size(); ++i)
+    EXPECT_TRUE(a[i] == b[i]) << "results.h5 /frames/" << names[i] << " differs";
+}
+
+struct Reference {
+  fs::path scene, out;
+};
+
+const Reference& reference(const std::string& name, const char* text) {
+  static std::map<std::string, Reference> made;
+  auto it = made.find(name);
+  if (it != made.end()) return it->second;
+  Reference r{write_scene(name, text), tmp_dir() / (name + "_straight")};
+  const CommandResult c = run(r.scene, r.out, "--threads 1");
+  EXPECT_EQ(c.code, 0) << c.output;
+  return made.emplace(name, r).first->second;
+}
+
+class Resume : public ::testing::TestWithParam<std::tuple<std::string, int>> {};
+
+TEST_P(Resume, AfterSigkillAtARandomStepGivesTheUninterruptedRunsBits) {
+  const auto [name, threads] = GetParam();
+  const Reference& ref = reference(name, name == "every_feature" ? kEveryFeature : kDie);
+  const fs::path out = tmp_dir() / (name + "_killed_" + std::to_string(threads));
+  ASSERT_TRUE(run_and_signal(ref.scene, out, threads, SIGKILL, 17u + threads))
+      << "the run ended before it could be killed";
+  EXPECT_FALSE(fs::exists(out / "summary.json"));
+  const CommandResult r = resume(out, "--threads " + std::to_string(threads));
+  ASSERT_EQ(r.code, 0) << r.output;
+  expect_same_run(ref.out, out);
+  EXPECT_NE(read_text(out / "run.log").find("resumed from checkpoint.h5"), std::string::npos);
+}
+
+TEST_P(Resume, AfterSigtermGivesTheUninterruptedRunsBits) {
+  const auto [name, threads] = GetParam();
+  const Reference& ref = reference(name, name == "every_feature" ? kEveryFeature : kDie);
+  const fs::path out = tmp_dir() / (name + "_terminated_" + std::to_string(threads));
+  ASSERT_TRUE(run_and_signal(ref.scene, out, threads, SIGTERM, 5u + threads));
+  const nlohmann::json s = nlohmann::json::parse(read_text(out / "summary.json"));
+  EXPECT_EQ(s["status"], "interrupted");
+  ASSERT_TRUE(s.contains("checkpoint"));
+  EXPECT_NE(s["checkpoint"]["resume"].get<std::string>().find("femdem resume"), std::string::npos);
+  EXPECT_NE(read_text(out / "run.log").find("Continue with: femdem resume"), std::string::npos);
+  const CommandResult r = resume(out, "--threads " + std::to_string(threads));
+  ASSERT_EQ(r.code, 0) << r.output;
+  expect_same_run(ref.out, out);
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, Resume,
+                         ::testing::Combine(::testing::Values("every_feature", "die"),
+                                            ::testing::Values(1, 2)));
+
+TEST(ResumeExtend, AFinishedRunWithALaterEndTimeEqualsTheLongerRun) {
+  const fs::path scene = write_scene("extend", kDie);
+  const fs::path longer = tmp_dir() / "extend_longer", extended = tmp_dir() / "extend_extended";
+  ASSERT_EQ(run(scene, longer, "--threads 1 --set simulation.end_time=5e-4").code, 0);
+  ASSERT_EQ(run(scene, extended, "--threads 1").code, 0);
+  const CommandResult r = resume(extended, "--set simulation.end_time=5e-4");
+  ASSERT_EQ(r.code, 0) << r.output;
+  expect_same_run(longer, extended);
+}
+
+// A failed resume leaves every file of the folder as it was.
+std::map<std::string, std::string> folder_contents(const fs::path& dir) {
+  std::map<std::string, std::string> c;
+  for (const auto& e : fs::directory_iterator(dir)) c[e.path().filename()] = read_text(e.path());
+  return c;
+}
+
+TEST(ResumeRefuses, BadCheckpointsAndChangesWithExit2AndTouchesNothing) {
+  const fs::path scene = write_scene("refuse", kDie);
+  const fs::path out = tmp_dir() / "refuse_run";
+  ASSERT_TRUE(run_and_signal(scene, out, 1, SIGKILL, 3u));
+  const fs::path other = tmp_dir() / "refuse_other";
+  ASSERT_EQ(run(write_scene("refuse_other", kEveryFeature), other,
+                "--threads 1 --set simulation.end_time=2e-4")
+                .code,
+            0);
+  const auto before = folder_contents(out);
+  const fs::path ck = out / "checkpoint.h5";
+  const std::string good = read_text(ck);
+  struct Case {
+    std::string what, options, expected;
+    std::function<void()> damage;
+  };
+  const std::vector<Case> cases = {
+      {"key that alters the past", "--set contact.friction=0.5",
+       "--set contact.friction: a resumed run may change only what does not alter the past", {}},
+      {"material key", "--set materials.aluminium.yield_stress=1e8",
+       "materials.aluminium.yield_stress: a resumed run may change only", {}},
+      {"missing checkpoint", "", "no checkpoint", [&] { fs::remove(ck); }},
+      {"truncated checkpoint", "", "truncated or damaged",
+       [&] { std::ofstream(ck, std::ios::binary) << good.substr(0, good.size() / 2); }},
+      {"not HDF5", "", "truncated or damaged", [&] { std::ofstream(ck) << "hello"; }},
+      {"another run's checkpoint", "", "the checkpoint does not belong to this folder's run",
+       [&] { fs::copy_file(other / "checkpoint.h5", ck, fs::copy_options::overwrite_existing); }},
+      {"scene changed", "", "the scene has changed since the run started",
+       [&] {
+         const std::string text = kDie;
+         const std::string from = "yield_stress = 100e6";
+         const std::size_t at = text.find(from);
+         ASSERT_NE(at, std::string::npos);
+         std::ofstream(scene) << text.substr(0, at) << "yield_stress = 120e6"
+                              << text.substr(at + from.size());
+       }},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.what);
+    std::ofstream(ck, std::ios::binary) << good;
+    std::ofstream(scene) << kDie;
+    if (c.damage) c.damage();
+    const auto damaged = folder_contents(out);
+    const CommandResult r = resume(out, c.options);
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find(c.expected), std::string::npos) << r.output;
+    EXPECT_TRUE(folder_contents(out) == damaged) << "the failed resume changed the folder";
+  }
+  // the format version names itself
+  std::ofstream(ck, std::ios::binary) << good;
+  {
+    const hid_t f = H5Fopen(ck.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    const hid_t a = H5Aopen(f, "format", H5P_DEFAULT);
+    const int other_format = 99;
+    H5Awrite(a, H5T_NATIVE_INT, &other_format);
+    H5Aclose(a);
+    H5Fclose(f);
+  }
+  const CommandResult r = resume(out);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.output.find("has format 99, this femdem reads format 1"), std::string::npos)
+      << r.output;
+  (void)before;
+}
+
+}  // namespace
+}  // namespace femdem::test
