@@ -63,8 +63,8 @@ class StateArchive {
     }
     const std::size_t n = stored_count(path, type_of<T>(), sizeof(T));
     if (length == Length::fixed && n != v.size())
-      throw CheckpointError("'" + path + "' holds " + std::to_string(n) + " items where the scene's model has " +
-                            std::to_string(v.size()));
+      throw CheckpointError("'" + path + "' holds " + std::to_string(n) +
+                            " items where the scene's model has " + std::to_string(v.size()));
     v.resize(n);
     read(path, v.data());
   }
@@ -81,7 +81,8 @@ class StateArchive {
     array(name, flat, length);
     if (saving()) return;
     v.resize(flat.size() / 3);
-    for (std::size_t i = 0; i < v.size(); ++i) v[i] = Vec3(flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]);
+    for (std::size_t i = 0; i < v.size(); ++i)
+      v[i] = Vec3(flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]);
   }
   template <class T>
   void value(std::string_view name, T& x) {
@@ -119,13 +120,20 @@ class StateArchive {
  private:
   template <class T>
   static constexpr Type type_of() {
-    if constexpr (std::is_same_v<T, double>) return Type::f64;
-    else if constexpr (std::is_same_v<T, std::int64_t>) return Type::i64;
-    else if constexpr (std::is_same_v<T, std::uint64_t>) return Type::u64;
-    else if constexpr (std::is_same_v<T, std::int32_t>) return Type::i32;
-    else if constexpr (std::is_same_v<T, std::uint32_t>) return Type::u32;
-    else if constexpr (std::is_same_v<T, std::uint8_t>) return Type::u8;
-    else return Type::record;
+    if constexpr (std::is_same_v<T, double>)
+      return Type::f64;
+    else if constexpr (std::is_same_v<T, std::int64_t>)
+      return Type::i64;
+    else if constexpr (std::is_same_v<T, std::uint64_t>)
+      return Type::u64;
+    else if constexpr (std::is_same_v<T, std::int32_t>)
+      return Type::i32;
+    else if constexpr (std::is_same_v<T, std::uint32_t>)
+      return Type::u32;
+    else if constexpr (std::is_same_v<T, std::uint8_t>)
+      return Type::u8;
+    else
+      return Type::record;
   }
   std::string prefix_;
 };

@@ -19,39 +19,58 @@ constexpr const char* kKind = "femdem checkpoint";
 hid_t file_type(StateArchive::Type t) {
   using T = StateArchive::Type;
   switch (t) {
-    case T::f64: return H5T_IEEE_F64LE;
-    case T::i64: return H5T_STD_I64LE;
-    case T::u64: return H5T_STD_U64LE;
-    case T::i32: return H5T_STD_I32LE;
-    case T::u32: return H5T_STD_U32LE;
+    case T::f64:
+      return H5T_IEEE_F64LE;
+    case T::i64:
+      return H5T_STD_I64LE;
+    case T::u64:
+      return H5T_STD_U64LE;
+    case T::i32:
+      return H5T_STD_I32LE;
+    case T::u32:
+      return H5T_STD_U32LE;
     case T::u8:
-    case T::record: return H5T_STD_U8LE;
+    case T::record:
+      return H5T_STD_U8LE;
   }
   return H5T_STD_U8LE;
 }
 hid_t memory_type(StateArchive::Type t) {
   using T = StateArchive::Type;
   switch (t) {
-    case T::f64: return H5T_NATIVE_DOUBLE;
-    case T::i64: return H5T_NATIVE_INT64;
-    case T::u64: return H5T_NATIVE_UINT64;
-    case T::i32: return H5T_NATIVE_INT32;
-    case T::u32: return H5T_NATIVE_UINT32;
+    case T::f64:
+      return H5T_NATIVE_DOUBLE;
+    case T::i64:
+      return H5T_NATIVE_INT64;
+    case T::u64:
+      return H5T_NATIVE_UINT64;
+    case T::i32:
+      return H5T_NATIVE_INT32;
+    case T::u32:
+      return H5T_NATIVE_UINT32;
     case T::u8:
-    case T::record: return H5T_NATIVE_UINT8;
+    case T::record:
+      return H5T_NATIVE_UINT8;
   }
   return H5T_NATIVE_UINT8;
 }
 const char* type_name(StateArchive::Type t) {
   using T = StateArchive::Type;
   switch (t) {
-    case T::f64: return "float64";
-    case T::i64: return "int64";
-    case T::u64: return "uint64";
-    case T::i32: return "int32";
-    case T::u32: return "uint32";
-    case T::u8: return "uint8";
-    case T::record: return "record";
+    case T::f64:
+      return "float64";
+    case T::i64:
+      return "int64";
+    case T::u64:
+      return "uint64";
+    case T::i32:
+      return "int32";
+    case T::u32:
+      return "uint32";
+    case T::u8:
+      return "uint8";
+    case T::record:
+      return "record";
   }
   return "?";
 }
@@ -176,8 +195,8 @@ class ReadingArchive final : public StateArchive {
     std::uint64_t stored_bytes = 0;
     if (!read_number_attribute(dset_.get(), "item_bytes", H5T_NATIVE_UINT64, stored_bytes) ||
         stored_bytes != item_bytes || values % item_bytes != 0)
-      fail(path, "holds records of " + std::to_string(stored_bytes) + " bytes where this femdem has " +
-                     std::to_string(item_bytes));
+      fail(path, "holds records of " + std::to_string(stored_bytes) +
+                     " bytes where this femdem has " + std::to_string(item_bytes));
     return values / item_bytes;
   }
   void read(const std::string& path, void* data) override {

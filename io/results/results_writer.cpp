@@ -173,8 +173,8 @@ struct ResultsWriter::Impl {
       if (c[0] != elements || x[0] != nodes)
         throw std::runtime_error(h5_path.string() + " holds a mesh of " + std::to_string(x[0]) +
                                  " nodes and " + std::to_string(c[0]) +
-                                 " elements, the scene's model " + std::to_string(nodes) +
-                                 " and " + std::to_string(elements) + ": not this run's results");
+                                 " elements, the scene's model " + std::to_string(nodes) + " and " +
+                                 std::to_string(elements) + ": not this run's results");
       const auto t = extent("/frames/time", 1);
       if (t[0] < static_cast<hsize_t>(keep))
         throw std::runtime_error(h5_path.string() + " holds " + std::to_string(t[0]) +
@@ -182,8 +182,7 @@ struct ResultsWriter::Impl {
                                  " the checkpoint counts: the results were cut short");
       std::vector<double> times(t[0]);
       {
-        Handle d(check(H5Dopen2(f, "/frames/time", H5P_DEFAULT), "opening /frames/time"),
-                 H5Dclose);
+        Handle d(check(H5Dopen2(f, "/frames/time", H5P_DEFAULT), "opening /frames/time"), H5Dclose);
         if (!times.empty())
           check_status(
               H5Dread(d.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, times.data()),
@@ -211,13 +210,13 @@ struct ResultsWriter::Impl {
                         "reopening for SWMR writing"),
                   H5Fclose);
     const Handle dapl = frame_access();
-    time_dset = Handle(check(H5Dopen2(file.get(), "/frames/time", H5P_DEFAULT), "opening /frames/time"),
-                       H5Dclose);
+    time_dset = Handle(
+        check(H5Dopen2(file.get(), "/frames/time", H5P_DEFAULT), "opening /frames/time"), H5Dclose);
     for (FrameDataset& fd : fields)
-      fd.dset = Handle(check(H5Dopen2(file.get(), (std::string("/frames/") + fd.name).c_str(),
-                                      dapl.get()),
-                             std::string("opening /frames/") + fd.name),
-                       H5Dclose);
+      fd.dset = Handle(
+          check(H5Dopen2(file.get(), (std::string("/frames/") + fd.name).c_str(), dapl.get()),
+                std::string("opening /frames/") + fd.name),
+          H5Dclose);
   }
 
   void create_frame_dataset(hid_t group, FrameDataset& f) {

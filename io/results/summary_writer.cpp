@@ -221,8 +221,9 @@ std::string summary_keys_markdown() {
   append_table<Compaction>(md, "`compaction.heckel`:", kHeckelKeys, "");
   append_table<Compaction>(md, "`compaction.kawakita`:", kKawakitaKeys, "");
   append_table<CheckpointSummary>(
-      md, "`checkpoint` (the run's last checkpoint, written at the end of the run, on a signal "
-          "and periodically; `femdem resume`):",
+      md,
+      "`checkpoint` (the run's last checkpoint, written at the end of the run, on a signal "
+      "and periodically; `femdem resume`):",
       kCheckpointKeys, "");
   return md;
 }

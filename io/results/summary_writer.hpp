@@ -67,10 +67,10 @@ struct CompactionSummary {
 
 // The run's last checkpoint (checkpoint.h5): where `femdem resume` continues from.
 struct CheckpointSummary {
-  std::string file;     // path of checkpoint.h5
-  double time = 0.0;    // s, simulated time it holds
+  std::string file;   // path of checkpoint.h5
+  double time = 0.0;  // s, simulated time it holds
   std::int64_t step = 0;
-  std::string resume;   // the command that continues the run
+  std::string resume;  // the command that continues the run
 };
 struct RunSummary {
   std::string scene;  // scene file as given

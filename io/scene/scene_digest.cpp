@@ -47,11 +47,14 @@ std::string value_text(const toml::node& n) {
 }  // namespace
 
 const std::vector<std::string>& resumable_keys() {
-  static const std::vector<std::string> keys = {
-      "simulation.end_time",          "simulation.output_interval",
-      "simulation.history_interval",  "simulation.checkpoint_interval",
-      "simulation.checkpoint_wall_interval", "simulation.rest_kinetic_fraction",
-      "simulation.rest_hold_time",    "simulation.threads"};
+  static const std::vector<std::string> keys = {"simulation.end_time",
+                                                "simulation.output_interval",
+                                                "simulation.history_interval",
+                                                "simulation.checkpoint_interval",
+                                                "simulation.checkpoint_wall_interval",
+                                                "simulation.rest_kinetic_fraction",
+                                                "simulation.rest_hold_time",
+                                                "simulation.threads"};
   return keys;
 }
 

@@ -20,6 +20,8 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <sstream>
@@ -130,10 +132,10 @@ impact_damping = 0.1
 
 const char* const kDie = R"(title = "restart: force-driven punch in a die"
 [simulation]
-end_time = 4e-4
-output_interval = 4e-5
-history_interval = 4e-6
-checkpoint_interval = 4e-5
+end_time = 3e-4
+output_interval = 3e-5
+history_interval = 3e-6
+checkpoint_interval = 3e-5
 
 [[materials]]
 name = "aluminium"
@@ -166,7 +168,7 @@ friction = 0.2
 name = "punch"
 point = [0.0, 0.0, 11.2e-3]
 normal = [0.0, 0.0, -1.0]
-force_history = [[0.0, 0.0], [2e-4, 4e4], [4e-4, 4e4]]
+force_history = [[0.0, 0.0], [1.5e-4, 4e4], [3e-4, 4e4]]
 mass = 0.2
 velocity = [0.0, 0.0, -2.0]
 
@@ -202,7 +204,9 @@ die_area = 6.4e-5
 die_perimeter = 32e-3
 )";
 
-fs::path tmp_dir() { return fs::path(FEMDEM_TEST_TMP) / "resume"; }
+fs::path tmp_dir() {
+  return fs::path(FEMDEM_TEST_TMP) / "resume";
+}
 
 fs::path write_scene(const std::string& name, const char* text) {
   fs::create_directories(tmp_dir());
@@ -237,8 +241,8 @@ bool run_and_signal(const fs::path& scene, const fs::path& out, int threads, int
                     unsigned seed) {
   fs::remove_all(out);
   const std::string threads_text = std::to_string(threads);
-  std::vector<std::string> args = {FEMDEM_EXE, "run",     scene.string(), "--quiet",
-                                   "--out",    out.string(), "--threads", threads_text};
+  std::vector<std::string> args = {FEMDEM_EXE, "run",        scene.string(), "--quiet",
+                                   "--out",    out.string(), "--threads",    threads_text};
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -270,7 +274,8 @@ nlohmann::json comparable_summary(const fs::path& out) {
   nlohmann::json j = nlohmann::json::parse(read_text(out / "summary.json"));
   j.erase("wall_time_s");
   j.erase("threads");
-  for (const char* k : {"setup_time_s", "loop_time_s", "element_updates_per_s", "compaction_time_s"})
+  for (const char* k :
+       {"setup_time_s", "loop_time_s", "element_updates_per_s", "compaction_time_s"})
     j["extra"].erase(k);
   j["checkpoint"].erase("file");
   j["checkpoint"].erase("resume");
@@ -303,7 +308,12 @@ void expect_same_run(const fs::path& reference, const fs::path& out) {
   const auto a = frames(reference), b = frames(out);
   ASSERT_EQ(a.size(), 7u);
   ASSERT_EQ(b.size(), 7u);
-  const char* names[] = {"time", "displacement", "velocity", "stress", "von_mises", "pressure",
+  const char* names[] = {"time",
+                         "displacement",
+                         "velocity",
+                         "stress",
+                         "von_mises",
+                         "pressure",
                          "equivalent_plastic_strain"};
   for (std::size_t i = 0; i < a.size(); ++i)
     EXPECT_TRUE(a[i] == b[i]) << "results.h5 /frames/" << names[i] << " differs";
@@ -313,22 +323,22 @@ struct Reference {
   fs::path scene, out;
 };
 
-const Reference& reference(const std::string& name, const char* text) {
-  static std::map<std::string, Reference> made;
-  auto it = made.find(name);
-  if (it != made.end()) return it->second;
-  Reference r{write_scene(name, text), tmp_dir() / (name + "_straight")};
+// The uninterrupted run, one per test (ctest runs the tests as processes side by side: each
+// writes its own scene file and folders).
+Reference reference(const std::string& name, const char* text, const std::string& tag) {
+  Reference r{write_scene(name + "_" + tag, text), tmp_dir() / (name + "_" + tag + "_straight")};
   const CommandResult c = run(r.scene, r.out, "--threads 1");
   EXPECT_EQ(c.code, 0) << c.output;
-  return made.emplace(name, r).first->second;
+  return r;
 }
 
 class Resume : public ::testing::TestWithParam<std::tuple<std::string, int>> {};
 
 TEST_P(Resume, AfterSigkillAtARandomStepGivesTheUninterruptedRunsBits) {
   const auto [name, threads] = GetParam();
-  const Reference& ref = reference(name, name == "every_feature" ? kEveryFeature : kDie);
-  const fs::path out = tmp_dir() / (name + "_killed_" + std::to_string(threads));
+  const std::string tag = "killed_" + std::to_string(threads);
+  const Reference ref = reference(name, name == "every_feature" ? kEveryFeature : kDie, tag);
+  const fs::path out = tmp_dir() / (name + "_" + tag);
   ASSERT_TRUE(run_and_signal(ref.scene, out, threads, SIGKILL, 17u + threads))
       << "the run ended before it could be killed";
   EXPECT_FALSE(fs::exists(out / "summary.json"));
@@ -340,8 +350,9 @@ TEST_P(Resume, AfterSigkillAtARandomStepGivesTheUninterruptedRunsBits) {
 
 TEST_P(Resume, AfterSigtermGivesTheUninterruptedRunsBits) {
   const auto [name, threads] = GetParam();
-  const Reference& ref = reference(name, name == "every_feature" ? kEveryFeature : kDie);
-  const fs::path out = tmp_dir() / (name + "_terminated_" + std::to_string(threads));
+  const std::string tag = "terminated_" + std::to_string(threads);
+  const Reference ref = reference(name, name == "every_feature" ? kEveryFeature : kDie, tag);
+  const fs::path out = tmp_dir() / (name + "_" + tag);
   ASSERT_TRUE(run_and_signal(ref.scene, out, threads, SIGTERM, 5u + threads));
   const nlohmann::json s = nlohmann::json::parse(read_text(out / "summary.json"));
   EXPECT_EQ(s["status"], "interrupted");
@@ -360,9 +371,9 @@ INSTANTIATE_TEST_SUITE_P(Scenes, Resume,
 TEST(ResumeExtend, AFinishedRunWithALaterEndTimeEqualsTheLongerRun) {
   const fs::path scene = write_scene("extend", kDie);
   const fs::path longer = tmp_dir() / "extend_longer", extended = tmp_dir() / "extend_extended";
-  ASSERT_EQ(run(scene, longer, "--threads 1 --set simulation.end_time=5e-4").code, 0);
+  ASSERT_EQ(run(scene, longer, "--threads 1 --set simulation.end_time=3.6e-4").code, 0);
   ASSERT_EQ(run(scene, extended, "--threads 1").code, 0);
-  const CommandResult r = resume(extended, "--set simulation.end_time=5e-4");
+  const CommandResult r = resume(extended, "--set simulation.end_time=3.6e-4");
   ASSERT_EQ(r.code, 0) << r.output;
   expect_same_run(longer, extended);
 }
@@ -391,10 +402,14 @@ TEST(ResumeRefuses, BadCheckpointsAndChangesWithExit2AndTouchesNothing) {
     std::function<void()> damage;
   };
   const std::vector<Case> cases = {
-      {"key that alters the past", "--set contact.friction=0.5",
-       "--set contact.friction: a resumed run may change only what does not alter the past", {}},
-      {"material key", "--set materials.aluminium.yield_stress=1e8",
-       "materials.aluminium.yield_stress: a resumed run may change only", {}},
+      {"key that alters the past",
+       "--set contact.friction=0.5",
+       "--set contact.friction: a resumed run may change only what does not alter the past",
+       {}},
+      {"material key",
+       "--set materials.aluminium.yield_stress=1e8",
+       "materials.aluminium.yield_stress: a resumed run may change only",
+       {}},
       {"missing checkpoint", "", "no checkpoint", [&] { fs::remove(ck); }},
       {"truncated checkpoint", "", "truncated or damaged",
        [&] { std::ofstream(ck, std::ios::binary) << good.substr(0, good.size() / 2); }},

@@ -341,6 +341,34 @@ TEST(Sweep, ResumeSkipsCompletedRuns) {
   EXPECT_TRUE(contains(r.output, "running 1")) << r.output;
 }
 
+TEST(Sweep, ResumesInterruptedRunsFromTheirCheckpoints) {
+  const fs::path d = tmp_dir("resume_interrupted");
+  const std::string args = "sweep '" + bar_scene() + "' --out s --jobs 1 --no-plot" + kShortBar +
+                           " --vary materials.bar.density=1,2";
+  Result r = femdem_in(d, args);
+  ASSERT_EQ(r.code, 0) << r.output;
+  const Csv before = read_csv(d / "s" / "sweep.csv");
+  ASSERT_EQ(before.rows.size(), 2u);
+  // the first run as a kill leaves it: its checkpoint, no summary
+  const fs::path run = d / "s" / before.rows[0].at("run");
+  ASSERT_TRUE(fs::exists(run / "checkpoint.h5"));
+  fs::remove(run / "summary.json");
+  r = femdem_in(d, args);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_TRUE(contains(r.output, "1 already completed")) << r.output;
+  EXPECT_TRUE(contains(r.output, "1 of them resumed from their checkpoints")) << r.output;
+  EXPECT_TRUE(contains(read_text(run / "run.log"), "# resumed")) << "rerun, not resumed";
+  const Csv after = read_csv(d / "s" / "sweep.csv");
+  ASSERT_EQ(after.header, before.header);
+  const std::set<std::string> timing = {"wall_time_s", "extra.setup_time_s", "extra.loop_time_s",
+                                        "extra.element_updates_per_s"};
+  for (std::size_t i = 0; i < before.rows.size(); ++i)
+    for (const auto& col : before.header) {
+      if (timing.count(col)) continue;
+      EXPECT_EQ(before.rows[i].at(col), after.rows[i].at(col)) << col << " row " << i;
+    }
+}
+
 TEST(Sweep, JobsDoNotChangeTheNumbers) {
   const fs::path d = tmp_dir("jobs");
   const std::string args = "sweep '" + bar_scene() + "'" + kShortBar +

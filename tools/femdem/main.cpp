@@ -113,8 +113,9 @@ Command add_resume(CLI::App& app, const std::string& exe, const std::string& com
                    "history_interval, checkpoint_interval, checkpoint_wall_interval, "
                    "rest_kinetic_fraction, rest_hold_time, threads (KEY=VALUE, repeatable)")
       ->allow_extra_args(false);
-  resume->add_option("--threads", s->options.run.threads,
-                     "Number of threads (0: all cores; default: the run's)")
+  resume
+      ->add_option("--threads", s->options.run.threads,
+                   "Number of threads (0: all cores; default: the run's)")
       ->check(CLI::NonNegativeNumber);
   resume->add_flag("--quiet", s->options.run.quiet, "Print nothing but errors");
   resume->add_flag("--no-plot", s->no_plot,
@@ -122,7 +123,8 @@ Command add_resume(CLI::App& app, const std::string& exe, const std::string& com
   return {resume, [s, exe, command_line] {
             femdem::ResumeOptions& o = s->options;
             o.run.command_line = command_line;
-            if (!s->no_plot) o.run.plot_script = femdem::find_plot_script(exe, "plot_compaction.py");
+            if (!s->no_plot)
+              o.run.plot_script = femdem::find_plot_script(exe, "plot_compaction.py");
             return femdem::resume_run(o);
           }};
 }
@@ -298,8 +300,11 @@ int main(int argc, char** argv) {
       "Scene keys: docs/SCENES.md");
   const std::string exe = self_exe(argv[0]);
   const Command commands[] = {add_run(app, exe, command_line_of(argc, argv)),
-                              add_resume(app, exe, command_line_of(argc, argv)), add_check(app),
-                              add_sweep(app, exe), add_pack(app), add_mesh(app)};
+                              add_resume(app, exe, command_line_of(argc, argv)),
+                              add_check(app),
+                              add_sweep(app, exe),
+                              add_pack(app),
+                              add_mesh(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

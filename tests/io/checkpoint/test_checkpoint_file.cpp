@@ -30,7 +30,9 @@ fs::path folder() {
   return d;
 }
 
-CheckpointInfo info(double t) { return {kCheckpointFormat, "test (abc)", "0123456789abcdef", t, 7}; }
+CheckpointInfo info(double t) {
+  return {kCheckpointFormat, "test (abc)", "0123456789abcdef", t, 7};
+}
 
 struct State {
   std::vector<double> x = {1.0, -0.0, std::numeric_limits<double>::denorm_min(), HUGE_VAL, NAN};
@@ -123,19 +125,23 @@ TEST(CheckpointFile, RefusesWhatDoesNotFitNamingTheArray) {
   EXPECT_NE(refusal(p, [&](StateArchive& a) { a.array("part/x", wrong_length); })
                 .find("'part/x' holds 5 items where the scene's model has 4"),
             std::string::npos);
-  EXPECT_NE(refusal(p, [&](StateArchive& a) {
-              std::vector<std::int32_t> v(5);
-              a.array("part/x", v);
-            }).find("'part/x' is not of type int32"),
+  EXPECT_NE(refusal(p,
+                    [&](StateArchive& a) {
+                      std::vector<std::int32_t> v(5);
+                      a.array("part/x", v);
+                    })
+                .find("'part/x' is not of type int32"),
             std::string::npos);
   struct Bigger {  // a record that grew a member since the checkpoint was written
     double a, b, c;
   };
   static_assert(sizeof(Record) == 16 && sizeof(Bigger) == 24);
   std::vector<Bigger> bigger;
-  EXPECT_NE(refusal(p, [&](StateArchive& a) {
-              a.array("part/records", bigger, StateArchive::Length::variable);
-            }).find("'part/records' holds records of 16 bytes where this femdem has 24"),
+  EXPECT_NE(refusal(p,
+                    [&](StateArchive& a) {
+                      a.array("part/records", bigger, StateArchive::Length::variable);
+                    })
+                .find("'part/records' holds records of 16 bytes where this femdem has 24"),
             std::string::npos);
   std::vector<double> missing(1);
   EXPECT_NE(refusal(p, [&](StateArchive& a) { a.array("part/nothing", missing); })

@@ -45,10 +45,12 @@ TEST(SceneDigest, IgnoresWhatAResumeMayChangeAndSeesEverythingElse) {
 
 TEST(SceneDigest, ResumableSettingsAreOverridesThatReadBackExactly) {
   const std::vector<std::string> s = resumable_settings(kScene);
-  const std::vector<std::string> expected = {
-      "simulation.end_time=0.001",           "simulation.output_interval=2e-05",
-      "simulation.history_interval=1e-06",   "simulation.checkpoint_interval=0.0",
-      "simulation.checkpoint_wall_interval=600.0", "simulation.threads=0"};
+  const std::vector<std::string> expected = {"simulation.end_time=0.001",
+                                             "simulation.output_interval=2e-05",
+                                             "simulation.history_interval=1e-06",
+                                             "simulation.checkpoint_interval=0.0",
+                                             "simulation.checkpoint_wall_interval=600.0",
+                                             "simulation.threads=0"};
   EXPECT_EQ(s, expected);
 }
 

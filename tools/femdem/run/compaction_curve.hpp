@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "engine/compaction.hpp"
-#include "io/results/summary_writer.hpp"
 #include "engine/state_archive.hpp"
+#include "io/results/summary_writer.hpp"
 
 namespace femdem {
 

@@ -9,8 +9,8 @@
 #include <cmath>
 #include <vector>
 
-#include "tools/femdem/run/history_sample.hpp"
 #include "engine/state_archive.hpp"
+#include "tools/femdem/run/history_sample.hpp"
 
 namespace femdem {
 

@@ -7,8 +7,8 @@
 #include <optional>
 
 #include "engine/simulation.hpp"
-#include "io/results/summary_writer.hpp"
 #include "engine/state_archive.hpp"
+#include "io/results/summary_writer.hpp"
 
 namespace femdem {
 

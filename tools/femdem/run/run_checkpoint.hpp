@@ -17,9 +17,9 @@ namespace femdem {
 inline constexpr const char* kCheckpointFile = "checkpoint.h5";
 
 struct RunOrigin {
-  std::string scene_path;               // absolute
-  std::vector<std::string> overrides;   // the run's --set, in order
-  std::string resolved_toml;            // the resolved scene of the run (of its last resume)
+  std::string scene_path;              // absolute
+  std::vector<std::string> overrides;  // the run's --set, in order
+  std::string resolved_toml;           // the resolved scene of the run (of its last resume)
 };
 void exchange_origin(StateArchive& a, RunOrigin& origin);
 // The origin stored in a checkpoint (CheckpointError when it is not a readable checkpoint).
@@ -28,7 +28,7 @@ RunOrigin read_run_origin(const std::filesystem::path& checkpoint);
 struct OutputCounts {
   std::uint64_t history_bytes = 0;  // of history.csv, header included
   std::int64_t history_rows = 0;
-  std::int64_t frames = 0;          // of results.h5
+  std::int64_t frames = 0;  // of results.h5
   void exchange_state(StateArchive& a) {
     const StateArchive::Scope scope(a, "outputs");
     a.value("history_bytes", history_bytes);

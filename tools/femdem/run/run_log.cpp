@@ -9,8 +9,9 @@ namespace femdem {
 
 RunLog::RunLog(const std::filesystem::path& path, bool quiet, bool append)
     : file_(path, append ? std::ios::app : std::ios::trunc), quiet_(quiet) {
-  if (!file_) throw std::runtime_error(std::string(append ? "cannot open " : "cannot create ") +
-                                       path.string());
+  if (!file_)
+    throw std::runtime_error(std::string(append ? "cannot open " : "cannot create ") +
+                             path.string());
 }
 
 void RunLog::say(const std::string& line) {

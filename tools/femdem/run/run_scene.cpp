@@ -20,10 +20,10 @@
 #include "engine/errors.hpp"
 #include "engine/simulation.hpp"
 #include "femdem_version.hpp"
+#include "io/checkpoint/checkpoint_file.hpp"
 #include "io/results/history_writer.hpp"
 #include "io/results/results_writer.hpp"
 #include "io/results/summary_writer.hpp"
-#include "io/checkpoint/checkpoint_file.hpp"
 #include "io/scene/scene_digest.hpp"
 #include "tools/femdem/run/compaction_curve.hpp"
 #include "tools/femdem/run/output_schedule.hpp"
@@ -211,7 +211,6 @@ void plot_compaction(const std::string& script, const std::filesystem::path& out
     log.say("note: no compaction plots (" + script + " exited with " + std::to_string(code) +
             "; see run.log)");
 }
-
 
 // How a run starts: afresh, or from the checkpoint in its folder (femdem resume).
 struct ResumePoint {
@@ -514,8 +513,8 @@ int resume_run(const ResumeOptions& options) {
       std::string list;
       for (const std::string& k : allowed) list += (list.empty() ? "" : ", ") + k;
       throw InputError("--set " + key +
-                           ": a resumed run may change only what does not alter the past (" +
-                           list + ")",
+                           ": a resumed run may change only what does not alter the past (" + list +
+                           ")",
                        "", 0, 0, key);
     }
     given.push_back(key);
@@ -539,11 +538,12 @@ int resume_run(const ResumeOptions& options) {
   if (scene_digest(scene.resolved_toml) != point.info.scene_digest) {
     const std::string was = scene_identity_text(origin.resolved_toml);
     const std::string now = scene_identity_text(scene.resolved_toml);
-    throw InputError("the scene has changed since the run started, so the checkpoint does not "
-                     "belong to it: the run had `" +
-                         first_differing_line(was, now) + "` where the scene now gives `" +
-                         first_differing_line(now, was) + "`",
-                     origin.scene_path);
+    throw InputError(
+        "the scene has changed since the run started, so the checkpoint does not "
+        "belong to it: the run had `" +
+            first_differing_line(was, now) + "` where the scene now gives `" +
+            first_differing_line(now, was) + "`",
+        origin.scene_path);
   }
   return execute(scene, std::move(origin), options.run, &point);
 }

@@ -121,7 +121,8 @@ static std::string number_text(const Json& v) {
 void flatten(const Json& j, const std::string& prefix, Fields& out) {
   if (j.is_object()) {
     for (auto it = j.begin(); it != j.end(); ++it) {
-      if (prefix.empty() && it.key() == "scene") continue;  // the same for every run
+      // the scene is the same for every run; the checkpoint is the run folder's bookkeeping
+      if (prefix.empty() && (it.key() == "scene" || it.key() == "checkpoint")) continue;
       flatten(it.value(), prefix + it.key() + ".", out);
     }
     return;
