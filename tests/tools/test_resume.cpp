@@ -204,6 +204,40 @@ die_area = 6.4e-5
 die_perimeter = 32e-3
 )";
 
+// A sphere that hits a floor with heavy impact damping and leaves it slowly: at rest by the
+// kinetic-energy criterion soon after the impact, well before the end time.
+const char* const kRest = R"(title = "restart: stop at rest"
+[simulation]
+end_time = 1e-3
+output_interval = 2e-5
+history_interval = 2e-6
+rest_kinetic_fraction = 0.05
+rest_hold_time = 4e-5
+checkpoint_interval = 2e-5
+
+[[materials]]
+name = "steel"
+model = "elastic"
+density = 7850.0
+youngs_modulus = 210e9
+poisson_ratio = 0.3
+
+[[bodies]]
+name = "ball"
+material = "steel"
+mesh = { generator = "sphere", radius = 4e-3, element_size = 2e-3 }
+position = [0.0, 0.0, 4.05e-3]
+velocity = [0.0, 0.0, -2.0]
+
+[[walls]]
+name = "floor"
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 1.0]
+
+[contact]
+impact_damping = 0.6
+)";
+
 fs::path tmp_dir() {
   return fs::path(FEMDEM_TEST_TMP) / "resume";
 }
@@ -235,10 +269,10 @@ CommandResult resume(const fs::path& out, const std::string& options = "") {
   return femdem("resume " + quoted(out) + " --quiet " + options);
 }
 
-// Starts `femdem run`, waits until a checkpoint exists and then a random 0-400 ms more, and
-// sends `sig`. Returns false if the run ended before it could be signalled.
-bool run_and_signal(const fs::path& scene, const fs::path& out, int threads, int sig,
-                    unsigned seed) {
+// Starts `femdem run`, waits until a checkpoint exists and then a random 0 to max_delay_ms more,
+// and sends `sig`. Returns false if the run ended before it could be signalled.
+bool signal_once(const fs::path& scene, const fs::path& out, int threads, int sig,
+                 std::mt19937& rng, int max_delay_ms) {
   fs::remove_all(out);
   const std::string threads_text = std::to_string(threads);
   std::vector<std::string> args = {FEMDEM_EXE, "run",        scene.string(), "--quiet",
@@ -251,15 +285,27 @@ bool run_and_signal(const fs::path& scene, const fs::path& out, int threads, int
   const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(120);
   while (!fs::exists(out / "checkpoint.h5") && std::chrono::steady_clock::now() < give_up) {
     if (waitpid(pid, nullptr, WNOHANG) == pid) return false;
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
-  std::mt19937 rng(seed);
-  std::this_thread::sleep_for(std::chrono::milliseconds(rng() % 400));
+  std::this_thread::sleep_for(std::chrono::milliseconds(rng() % (max_delay_ms + 1)));
   int status = 0;
   if (waitpid(pid, &status, WNOHANG) == pid) return false;  // finished first
   kill(pid, sig);
   waitpid(pid, &status, 0);
   return true;
+}
+
+// signal_once with a delay of up to a third of the uninterrupted run's wall time (read from
+// `reference`'s summary), tried again with shorter delays if the run ends first.
+bool run_and_signal(const fs::path& scene, const fs::path& out, int threads, int sig, unsigned seed,
+                    const fs::path& reference) {
+  std::ifstream in(reference / "summary.json");
+  const double wall_s = in ? nlohmann::json::parse(in).value("wall_time_s", 1.0) : 1.0;
+  std::mt19937 rng(seed);
+  int max_delay_ms = static_cast<int>(1000.0 * wall_s / 3.0);
+  for (int attempt = 0; attempt < 4; ++attempt, max_delay_ms /= 4)
+    if (signal_once(scene, out, threads, sig, rng, max_delay_ms)) return true;
+  return false;
 }
 
 std::string read_text(const fs::path& p) {
@@ -339,7 +385,7 @@ TEST_P(Resume, AfterSigkillAtARandomStepGivesTheUninterruptedRunsBits) {
   const std::string tag = "killed_" + std::to_string(threads);
   const Reference ref = reference(name, name == "every_feature" ? kEveryFeature : kDie, tag);
   const fs::path out = tmp_dir() / (name + "_" + tag);
-  ASSERT_TRUE(run_and_signal(ref.scene, out, threads, SIGKILL, 17u + threads))
+  ASSERT_TRUE(run_and_signal(ref.scene, out, threads, SIGKILL, 17u + threads, ref.out))
       << "the run ended before it could be killed";
   EXPECT_FALSE(fs::exists(out / "summary.json"));
   const CommandResult r = resume(out, "--threads " + std::to_string(threads));
@@ -353,7 +399,7 @@ TEST_P(Resume, AfterSigtermGivesTheUninterruptedRunsBits) {
   const std::string tag = "terminated_" + std::to_string(threads);
   const Reference ref = reference(name, name == "every_feature" ? kEveryFeature : kDie, tag);
   const fs::path out = tmp_dir() / (name + "_" + tag);
-  ASSERT_TRUE(run_and_signal(ref.scene, out, threads, SIGTERM, 5u + threads));
+  ASSERT_TRUE(run_and_signal(ref.scene, out, threads, SIGTERM, 5u + threads, ref.out));
   const nlohmann::json s = nlohmann::json::parse(read_text(out / "summary.json"));
   EXPECT_EQ(s["status"], "interrupted");
   ASSERT_TRUE(s.contains("checkpoint"));
@@ -367,6 +413,77 @@ TEST_P(Resume, AfterSigtermGivesTheUninterruptedRunsBits) {
 INSTANTIATE_TEST_SUITE_P(Scenes, Resume,
                          ::testing::Combine(::testing::Values("every_feature", "die"),
                                             ::testing::Values(1, 2)));
+
+TEST(ResumeAtRest, AKilledRunThatComesToRestStopsWhereTheUninterruptedOneDoes) {
+  const Reference ref = reference("rest", kRest, "killed");
+  const nlohmann::json s = nlohmann::json::parse(read_text(ref.out / "summary.json"));
+  ASSERT_TRUE(s["extra"].contains("at_rest_time")) << "the scene must come to rest";
+  EXPECT_LT(s["end_time"].get<double>(), 1e-3);
+  const fs::path out = tmp_dir() / "rest_killed";
+  ASSERT_TRUE(run_and_signal(ref.scene, out, 1, SIGKILL, 11u, ref.out));
+  ASSERT_EQ(resume(out, "--threads 1").code, 0);
+  expect_same_run(ref.out, out);
+  // resumed as it is, a run at rest stays where it stopped
+  const std::string history = read_text(out / "history.csv");
+  ASSERT_EQ(resume(out).code, 0);
+  EXPECT_EQ(read_text(out / "history.csv"), history);
+}
+
+TEST(ResumeAtRest, OtherRestCriteriaLookForRestAnew) {
+  const Reference ref = reference("rest", kRest, "rearmed");
+  const nlohmann::json before = nlohmann::json::parse(read_text(ref.out / "summary.json"));
+  const double rest_time = before["extra"]["at_rest_time"].get<double>();
+  const CommandResult r = resume(ref.out, "--set simulation.rest_kinetic_fraction=0.001");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const nlohmann::json after = nlohmann::json::parse(read_text(ref.out / "summary.json"));
+  EXPECT_GT(after["steps"].get<std::int64_t>(), before["steps"].get<std::int64_t>());
+  EXPECT_GT(after["end_time"].get<double>(), rest_time);
+  // the rows go on from the checkpoint: times strictly increasing, none twice
+  std::istringstream rows(read_text(ref.out / "history.csv"));
+  std::string line;
+  std::getline(rows, line);
+  double last = -1.0;
+  int count = 0;
+  while (std::getline(rows, line)) {
+    const double t = std::stod(line.substr(0, line.find(',')));
+    EXPECT_GT(t, last) << "row " << count;
+    last = t, ++count;
+  }
+  EXPECT_GT(last, rest_time);
+}
+
+// How many checkpoints run.log says the run wrote.
+int checkpoints_written(const fs::path& out) {
+  const std::string log = read_text(out / "run.log");
+  const auto at = log.find(" checkpoint");
+  if (at == std::string::npos) return 0;
+  const auto start = log.rfind('\n', at) + 1;
+  return std::stoi(log.substr(start, at - start));
+}
+
+TEST(ResumeCheckpoints, AreWrittenByWallClockAndOnceBeforeTheLastSteps) {
+  const fs::path scene = write_scene("wall_clock", kEveryFeature);
+  const fs::path out = tmp_dir() / "wall_clock";
+  const std::string shorter = "--threads 1 --set simulation.end_time=4e-4 ";
+  ASSERT_EQ(run(scene, out,
+                shorter + "--set simulation.checkpoint_interval=0 "
+                          "--set simulation.checkpoint_wall_interval=0")
+                .code,
+            0);
+  EXPECT_EQ(checkpoints_written(out), 1) << "only the one before the last steps";
+  const double wall_s =
+      nlohmann::json::parse(read_text(out / "summary.json"))["extra"]["loop_time_s"].get<double>();
+  ASSERT_EQ(run(scene, out,
+                shorter +
+                    "--set simulation.checkpoint_interval=0 "
+                    "--set simulation.checkpoint_wall_interval=" +
+                    std::to_string(wall_s / 5))
+                .code,
+            0);
+  // about five by the wall clock (the machine's speed varies between the two runs) and the last
+  EXPECT_GE(checkpoints_written(out), 3);
+  EXPECT_LE(checkpoints_written(out), 12);
+}
 
 TEST(ResumeExtend, AFinishedRunWithALaterEndTimeEqualsTheLongerRun) {
   const fs::path scene = write_scene("extend", kDie);
@@ -388,7 +505,7 @@ std::map<std::string, std::string> folder_contents(const fs::path& dir) {
 TEST(ResumeRefuses, BadCheckpointsAndChangesWithExit2AndTouchesNothing) {
   const fs::path scene = write_scene("refuse", kDie);
   const fs::path out = tmp_dir() / "refuse_run";
-  ASSERT_TRUE(run_and_signal(scene, out, 1, SIGKILL, 3u));
+  ASSERT_TRUE(run_and_signal(scene, out, 1, SIGKILL, 3u, fs::path()));
   const fs::path other = tmp_dir() / "refuse_other";
   ASSERT_EQ(run(write_scene("refuse_other", kEveryFeature), other,
                 "--threads 1 --set simulation.end_time=2e-4")

@@ -2,8 +2,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # What a checkpoint costs at 10^4, 10^5 and 10^6 TET10 elements (an elastic von Mises block on a
 # wall, a few steps): checkpoint.h5's size per element, the time to write one (the run log's
-# total over the run's checkpoints), the time to read one (the resume's setup time less the
-# run's: both build the same model), and the share of a run's wall time that writing one every
+# total over the run's checkpoints), the time to read one (the resume's log), and the share of a run's wall time that writing one every
 # checkpoint_wall_interval (600 s by default) takes. The figures of docs/PERFORMANCE.md,
 # "Checkpoints".
 #   tools/bench/checkpoint_cost.sh [FEMDEM [OUT_DIR [ELEMENT_SIZE ...]]]
@@ -60,7 +59,7 @@ log = open(os.path.join(d, "run.log")).read()
 n, t = re.findall(r"(\d+) checkpoints? written in ([0-9.e+-]+) s", log)[0]
 write = float(t) / int(n)
 size = os.path.getsize(os.path.join(d, "checkpoint.h5"))
-read = res["extra"]["setup_time_s"] - run["extra"]["setup_time_s"]
+read = float(re.findall(r"read in ([0-9.e+-]+) s", log)[0])
 step = run["extra"]["loop_time_s"] / run["steps"]
 e = run["elements"]
 print(f"{e:<9d} {run['nodes']:<10d} {size / 1e6:<12.1f} {size / e:<9.0f} {write:<13.3f} "

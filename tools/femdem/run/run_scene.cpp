@@ -222,7 +222,7 @@ std::string version_text() {
   return std::string(FEMDEM_VERSION) + " (" + FEMDEM_GIT_REVISION + ")";
 }
 
-void say_resumed(RunLog& log, const RunOptions& options, const ResumePoint& r) {
+void say_resumed(RunLog& log, const RunOptions& options, const ResumePoint& r, double read_s) {
   std::ostringstream head;
   const std::time_t now = std::time(nullptr);
   char date[64];
@@ -232,10 +232,10 @@ void say_resumed(RunLog& log, const RunOptions& options, const ResumePoint& r) {
   log.file_only(head.str());
   char buf[300];
   std::snprintf(buf, sizeof buf,
-                "resumed from %s at t = %.6g s, step %lld (written by femdem %s); the history "
-                "rows and frames after it are replaced",
+                "resumed from %s at t = %.6g s, step %lld (written by femdem %s, read in %.3g s); "
+                "the history rows and frames after it are replaced",
                 kCheckpointFile, r.info.time, static_cast<long long>(r.info.step),
-                r.info.femdem_version.c_str());
+                r.info.femdem_version.c_str(), read_s);
   log.say(buf);
   if (r.info.femdem_version != version_text())
     log.say("warning: the checkpoint was written by another femdem (" + r.info.femdem_version +
@@ -306,9 +306,12 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
     a.value("loop_time_s", loop_s);
     if (!a.saving()) earlier_wall_s = wall_s, earlier_loop_s = loop_s;
   };
+  double read_time_s = 0.0;
   if (resume) {
     try {
+      const auto t0 = Clock::now();
       read_checkpoint(checkpoint_path, exchange_run);
+      read_time_s = seconds_since(t0);
     } catch (const CheckpointError& e) {
       throw InputError(e.what(), checkpoint_path.string());
     }
@@ -344,7 +347,7 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
     history.emplace(out / "history.csv", history_columns(layout), at);
     std::filesystem::remove(out / "summary.json");
     log_file.emplace(out / "run.log", options.quiet, /*append=*/true);
-    say_resumed(*log_file, options, *resume);
+    say_resumed(*log_file, options, *resume, read_time_s);
     say_model(*log_file, scene, sim, threads);
   }
   RunLog& log = *log_file;
