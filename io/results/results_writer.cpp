@@ -105,6 +105,15 @@ struct ResultsWriter::Impl {
     }
   }
 
+  // The files' paths, the options and the mesh's sizes (checked: std::invalid_argument).
+  void set_up(const std::filesystem::path& dir, const ResultsMesh& mesh, ResultsOptions o) {
+    folder = dir;
+    h5_path = dir / kH5Name;
+    xdmf_path = dir / kXdmfName;
+    options = std::move(o);
+    set_mesh(mesh);
+  }
+
   // Checks the mesh's sizes and remembers them (std::invalid_argument when inconsistent).
   void set_mesh(const ResultsMesh& mesh) {
     if (mesh.coordinates.size() % 3 != 0 || mesh.coordinates.empty()) {
@@ -329,11 +338,7 @@ ResultsWriter::ResultsWriter(const std::filesystem::path& folder, const ResultsM
                              ResultsOptions options)
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
-  m.folder = folder;
-  m.h5_path = folder / kH5Name;
-  m.xdmf_path = folder / kXdmfName;
-  m.options = options;
-  m.set_mesh(mesh);
+  m.set_up(folder, mesh, options);
   std::filesystem::create_directories(folder);
   // A stale results.xdmf must never point into the new results.h5.
   write_file_atomically(m.xdmf_path, m.xdmf_text(), /*durable=*/false);
@@ -409,11 +414,7 @@ ResultsWriter::ResultsWriter(const std::filesystem::path& folder, const ResultsM
                              ContinueFrom from, ResultsOptions options)
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
-  m.folder = folder;
-  m.h5_path = folder / kH5Name;
-  m.xdmf_path = folder / kXdmfName;
-  m.options = options;
-  m.set_mesh(mesh);
+  m.set_up(folder, mesh, options);
   m.list_fields();
   if (!std::filesystem::is_regular_file(m.h5_path))
     throw std::runtime_error(m.h5_path.string() + " is missing: nothing to resume");
