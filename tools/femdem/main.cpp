@@ -68,29 +68,35 @@ Command add_run(CLI::App& app, const std::string& exe, const std::string& comman
     std::string scene_path, out_dir;
     std::vector<std::string> overrides;
     int threads = -1;
-    bool quiet = false, no_plot = false;
+    bool quiet = false, no_plot = false, force = false;
   };
   auto s = std::make_shared<State>();
   CLI::App* run = app.add_subcommand("run", "Run a scene and write its results");
   run->add_option("scene", s->scene_path, "Scene file (TOML)")->required();
-  run->add_option("--out", s->out_dir, "Output folder (default: out/<scene file stem>/)");
+  CLI::Option* out_option =
+      run->add_option("--out", s->out_dir, "Output folder (default: out/<scene file stem>/)");
   run->add_option("--set", s->overrides, "Override a scene value: KEY=VALUE (repeatable)")
       ->allow_extra_args(false);
   run->add_option("--threads", s->threads, "Number of threads (0: all cores; default: the scene's)")
       ->check(CLI::NonNegativeNumber);
   run->add_flag("--quiet", s->quiet, "Print nothing but errors");
+  run->add_flag("--force", s->force,
+                "Replace the outputs of an earlier run in the output folder (without it, such a "
+                "folder is refused: femdem resume continues that run)");
   run->add_flag("--no-plot", s->no_plot,
                 "Do not call tools/plot_compaction.py after a run with [compaction]");
-  return {run, [s, exe, command_line] {
+  return {run, [s, exe, command_line, out_option] {
             femdem::SceneFile scene = femdem::load_scene(s->scene_path, s->overrides);
             femdem::RunOptions options;
-            options.out_dir = s->out_dir.empty() ? default_out_dir(scene) : s->out_dir;
+            // --out '' is refused (run_scene), not taken for the default
+            options.out_dir = out_option->count() == 0 ? default_out_dir(scene) : s->out_dir;
             options.threads = s->threads;
             options.quiet = s->quiet;
             if (!s->no_plot && scene.model.compaction)
               options.plot_script = femdem::find_plot_script(exe, "plot_compaction.py");
             options.command_line = command_line;
             options.overrides = s->overrides;
+            options.force = s->force;
             return femdem::run_scene(scene, options);
           }};
 }

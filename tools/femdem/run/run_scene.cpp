@@ -26,6 +26,7 @@
 #include "io/results/summary_writer.hpp"
 #include "io/scene/scene_digest.hpp"
 #include "tools/femdem/run/compaction_curve.hpp"
+#include "tools/femdem/run/output_folder.hpp"
 #include "tools/femdem/run/output_schedule.hpp"
 #include "tools/femdem/run/output_tables.hpp"
 #include "tools/femdem/run/peak_monitor.hpp"
@@ -325,8 +326,10 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
   std::optional<ResultsWriter> results;
   std::optional<HistoryWriter> history;
   std::optional<RunLog> log_file;
+  std::optional<OutputFolderLock> lock;
   if (!resume) {
-    std::filesystem::create_directories(out);
+    lock.emplace(out, options.command_line);
+    if (!options.force) check_new_run_folder(out.string(), false);  // (another run since?)
     // A summary or checkpoint from an earlier run must not sit next to this run's outputs.
     std::filesystem::remove(out / "summary.json");
     std::filesystem::remove(checkpoint_path);
@@ -337,6 +340,7 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
     history.emplace(out / "history.csv", history_columns(layout));
   } else {
     const HistoryWriter::ContinueAt at{counts.history_bytes, counts.history_rows};
+    lock.emplace(out, options.command_line);
     try {
       HistoryWriter::check_continuable(out / "history.csv", history_columns(layout), at);
       results.emplace(out, mesh, ResultsWriter::ContinueFrom{counts.frames},
@@ -354,6 +358,8 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
 
   std::vector<double> disp(m.X.size()), s6, vm, pr, ep, row;
   auto write_frame = [&] {
+    // the rows up to this frame reach the file first: a killed run loses no row a frame has
+    history->flush();
     for (std::size_t i = 0; i < disp.size(); ++i) disp[i] = m.x[i] - m.X[i];
     sim.element_stress(s6, vm, pr, ep);
     results->write_frame(sim.time(), FrameFields{disp, m.v, s6, vm, pr, ep});
@@ -482,6 +488,7 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
 }  // namespace
 
 int run_scene(const SceneFile& scene, const RunOptions& options) {
+  check_new_run_folder(options.out_dir, options.force);
   std::error_code ec;
   RunOrigin origin{std::filesystem::absolute(scene.path, ec).string(), options.overrides, {}};
   return execute(scene, std::move(origin), options, nullptr);

@@ -16,6 +16,7 @@ struct RunOptions {
   bool quiet = false;
   std::string command_line;
   std::vector<std::string> overrides;  // the scene's --set, kept in the checkpoint for resume
+  bool force = false;  // --force: replace an earlier run's outputs in out_dir
   // Called as `python3 SCRIPT OUT_DIR` after a completed run whose scene has [compaction]
   // (tools/plot_compaction.py); empty: no plots. A failing script is reported, not fatal.
   std::string plot_script;

@@ -324,8 +324,9 @@ int run_sweep(const SweepOptions& opt) {
         // the run's own scene and overrides are in its checkpoint
         args = {opt.femdem_exe, "resume", rd.string(), "--threads", std::to_string(tpj), "--quiet"};
       } else {
-        args = {opt.femdem_exe, "run",       opt.scene_path,      "--out",
-                rd.string(),    "--threads", std::to_string(tpj), "--quiet"};
+        // (the sweep has decided that this run is to be made again: --force)
+        args = {opt.femdem_exe,      "run",     opt.scene_path, "--out", rd.string(), "--threads",
+                std::to_string(tpj), "--quiet", "--force"};
         for (const auto& s : opt.overrides) args.insert(args.end(), {"--set", s});
         for (std::size_t a = 0; a < axes.size(); ++a)
           args.insert(args.end(), {"--set", axes[a].key + "=" + r.values[a]});
