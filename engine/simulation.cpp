@@ -77,6 +77,14 @@ Simulation::Simulation(Model model)
     frequency_.emplace(model_);
   }
   if (model_.settings.mass_scaling_time_step > 0.0) elem_mass_scale_.assign(ne, 1.0);
+  // the energy a uniform strain of 1.4e-3 stores in the whole model (rho c^2 eps^2 / 2 per
+  // volume): the scale below which an energy error does not stop a run
+  for (std::int32_t e = 0; e < model_.element_count; ++e) {
+    const CompiledMaterial& cm = compiled_[model_.element_material[e]];
+    const double* w = model_.gauss_weight.data() + 4 * static_cast<std::size_t>(e);
+    energy_floor_ +=
+        1e-6 * cm.density * cm.wave_speed * cm.wave_speed * (w[0] + w[1] + w[2] + w[3]);
+  }
   elem_scratch_.assign(ne, 0.0);
   if (model_.contact.impact_damping > 0.0) {
     impact_scratch_.resize(model_.bodies.size());
@@ -494,7 +502,26 @@ void Simulation::step(double dt_limit) {
   const Energies en = energies();
   max_energy_ =
       std::max({max_energy_, en.kinetic + en.internal + en.contact, std::fabs(en.external_work)});
+  check_energy_balance(en);
   set_time_step();
+}
+
+void Simulation::check_energy_balance(const Energies& en) const {
+  const double limit = model_.settings.energy_balance_limit;
+  if (!(limit > 0.0)) return;
+  // against the largest energy so far, but never less than the floor: while the energies are
+  // tiny (the first touch of a wall), round-off and the trapezoidal work are large beside them
+  if (!(std::fabs(en.balance() - initial_balance_) > limit * std::max(max_energy_, energy_floor_)))
+    return;
+  const double error = balance_error();
+  std::ostringstream msg;
+  msg << "the energy balance error reached " << 100.0 * error << " % at t = " << time_
+      << " s, step " << steps_ << " (more than simulation.energy_balance_limit = " << 100.0 * limit
+      << " %): the run " << (error > 0.0 ? "created" : "lost") << " energy that no load or "
+      << "dissipation accounts for (now kinetic " << en.kinetic << " J, internal " << en.internal
+      << " J, contact " << en.contact << " J, external work " << en.external_work << " J). "
+      << advice();
+  throw InstabilityError(msg.str());
 }
 
 void Simulation::update_force_driven_walls(double step_dt) {

@@ -126,6 +126,9 @@ class Simulation {
   // mass.
   bool scale_masses(double element_dt_needed);
   std::string advice() const;  // what to change when the run diverges
+  // Throws InstabilityError once the balance's change exceeds settings.energy_balance_limit
+  // times the largest energy seen (at least energy_floor_).
+  void check_energy_balance(const Energies& en) const;
   // Adds the deformation damping force of every free body to f_int; returns its dissipation
   // rate (W, >= 0).
   double damp_deformation(double alpha);
@@ -187,6 +190,7 @@ class Simulation {
   double external_work_ = 0.0;
   double initial_balance_ = 0.0;
   double max_energy_ = 0.0;
+  double energy_floor_ = 0.0;  // J: the smallest energy scale of the balance stop rule
 };
 
 }  // namespace femdem

@@ -1,9 +1,20 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <cmath>
+#include <tuple>
 
 #include "io/scene/toml_reader.hpp"
 
 namespace femdem::scene {
+namespace {
+
+// The bounds of a run's schedule (docs/SCENES.md): a frame of even a small model is a
+// megabyte, a history row a few hundred bytes, and the steps of a longer end time would take
+// years at any step an explicit run can have.
+constexpr double kMaxFrames = 1e5;
+constexpr double kMaxHistoryRows = 1e8;
+constexpr double kMaxEndTime = 1e6;
+
+}  // namespace
 
 // ---------------------------------------------------------------------------------------------
 // Sections
@@ -18,7 +29,7 @@ void Reader::read_simulation(const toml::table& root, ModelSpec& spec, toml::tab
               "gravity", "threads", "bulk_viscosity_linear", "bulk_viscosity_quadratic",
               "mass_scaling_time_step", "mass_scaling_limit", "deformation_damping",
               "rest_kinetic_fraction", "rest_hold_time", "stable_step", "stable_step_interval",
-              "checkpoint_interval", "checkpoint_wall_interval"});
+              "checkpoint_interval", "checkpoint_wall_interval", "energy_balance_limit"});
   SimulationSettings& s = spec.simulation;
   s.end_time = positive(t, "end_time", p, std::nullopt, &t);
   s.time_step_safety = positive(t, "time_step_safety", p, s.time_step_safety, &t);
@@ -46,6 +57,22 @@ void Reader::read_simulation(const toml::table& root, ModelSpec& spec, toml::tab
   }
   s.output_interval = positive(t, "output_interval", p, s.end_time / 50.0, &t);
   s.history_interval = positive(t, "history_interval", p, s.output_interval / 20.0, &t);
+  // A schedule of absurd size would fill the disk, or spin for ever where the intervals vanish
+  // against the time's round-off: refused with the bound.
+  if (!(s.end_time <= kMaxEndTime))
+    fail(t.get("end_time"), "simulation.end_time",
+         "must be at most " + format_number(kMaxEndTime) + " s, got " + format_number(s.end_time));
+  for (const auto& [key, interval, most] :
+       {std::tuple{"output_interval", s.output_interval, kMaxFrames},
+        std::tuple{"history_interval", s.history_interval, kMaxHistoryRows}}) {
+    const double count = s.end_time / interval;
+    if (!(count <= most) || !(interval > s.end_time * 1e-15))
+      fail(t.get(key) ? t.get(key) : t.get("end_time"), dotted(p, key),
+           std::string(key) + " = " + format_number(interval) + " s gives " + format_number(count) +
+               (std::string(key) == "output_interval" ? " frames" : " rows") +
+               " over end_time = " + format_number(s.end_time) + " s, more than the " +
+               format_number(most) + " a run may write: make it longer");
+  }
   for (const char* key : {"checkpoint_interval", "checkpoint_wall_interval"}) {
     const bool wall = std::string(key) == "checkpoint_wall_interval";
     double& v = wall ? s.checkpoint_wall_interval : s.checkpoint_interval;
@@ -55,6 +82,10 @@ void Reader::read_simulation(const toml::table& root, ModelSpec& spec, toml::tab
            std::string("must be 0 (off) or a positive number of ") +
                (wall ? "wall-clock" : "simulated") + " seconds, got " + format_number(v));
   }
+  s.energy_balance_limit = number(t, "energy_balance_limit", p, s.energy_balance_limit, &t);
+  if (!(s.energy_balance_limit >= 0.0 && s.energy_balance_limit <= 1.0))
+    fail(t.get("energy_balance_limit"), "simulation.energy_balance_limit",
+         "must be 0 (off) or a fraction in (0, 1], got " + format_number(s.energy_balance_limit));
   if (auto g = opt_vec3(t, "gravity", p)) s.gravity = *g;
   if (auto th = opt_integer(t, "threads", p)) {
     if (*th < 0 || *th > 4096)
@@ -119,6 +150,7 @@ void Reader::read_simulation(const toml::table& root, ModelSpec& spec, toml::tab
   out.insert_or_assign("history_interval", s.history_interval);
   out.insert_or_assign("checkpoint_interval", s.checkpoint_interval);
   out.insert_or_assign("checkpoint_wall_interval", s.checkpoint_wall_interval);
+  out.insert_or_assign("energy_balance_limit", s.energy_balance_limit);
   out.insert_or_assign("gravity", toml::array{s.gravity.x(), s.gravity.y(), s.gravity.z()});
   out.insert_or_assign("threads", s.threads);
   out.insert_or_assign("bulk_viscosity_linear", s.bulk_viscosity_linear);

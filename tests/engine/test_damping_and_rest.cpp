@@ -60,6 +60,9 @@ Vibration vibrate(double alpha, double t_end, double safety = 0.5) {
   spec.bodies = {b};
   spec.simulation.deformation_damping = alpha;
   spec.simulation.time_step_safety = safety;
+  // the velocities are set after the start, which the engine's balance does not see (this test
+  // closes its own balance from that state): no stop on it
+  spec.simulation.energy_balance_limit = 0.0;
   Simulation sim(build_model(spec));
   Model& m = const_cast<Model&>(sim.model());
   for (std::int32_t n = 0; n < m.node_count; ++n) {

@@ -33,6 +33,9 @@ using femdem::kExitFailure;
 using femdem::kExitOk;
 using femdem::kExitUnstable;
 
+// --threads: the scene key's bounds (simulation.threads), in CLI11's words "in range 0 - 4096".
+const CLI::Range kThreadsRange(0, 4096);
+
 std::string version_string() {
   return std::string("femdem ") + FEMDEM_VERSION + " (git " + FEMDEM_GIT_REVISION + ")";
 }
@@ -78,7 +81,7 @@ Command add_run(CLI::App& app, const std::string& exe, const std::string& comman
   run->add_option("--set", s->overrides, "Override a scene value: KEY=VALUE (repeatable)")
       ->allow_extra_args(false);
   run->add_option("--threads", s->threads, "Number of threads (0: all cores; default: the scene's)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kThreadsRange);
   run->add_flag("--quiet", s->quiet, "Print nothing but errors");
   run->add_flag("--force", s->force,
                 "Replace the outputs of an earlier run in the output folder (without it, such a "
@@ -122,7 +125,7 @@ Command add_resume(CLI::App& app, const std::string& exe, const std::string& com
   resume
       ->add_option("--threads", s->options.run.threads,
                    "Number of threads (0: all cores; default: the run's)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kThreadsRange);
   resume->add_flag("--quiet", s->options.run.quiet, "Print nothing but errors");
   resume->add_flag("--no-plot", s->no_plot,
                    "Do not call tools/plot_compaction.py after a run with [compaction]");
@@ -153,7 +156,7 @@ Command add_check(CLI::App& app) {
   check->add_option("--strain-path", s->strain_path,
                     "File of target deformation gradients, 9 numbers (row-major F) per line");
   check->add_option("--substeps", s->substeps, "Increments between two targets (default 10)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1, 1000000));
   return {check, [s] {
             const femdem::SceneFile scene = femdem::load_scene(s->scene_path, s->overrides);
             if (s->material_name.empty() != s->strain_path.empty())
@@ -193,9 +196,9 @@ Command add_sweep(CLI::App& app, const std::string& exe) {
       ->allow_extra_args(false);
   sweep->add_option("--out", o.out_dir, "Sweep folder (default: out/<scene file stem>_sweep/)");
   sweep->add_option("--jobs", o.jobs, "Runs at a time (default: cores / threads per job)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1, 4096));
   sweep->add_option("--threads-per-job", o.threads_per_job, "Threads of each run (default 1)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1, 4096));
   sweep->add_flag("--no-plot", s->no_plot, "Do not call tools/plot_sweep.py at the end");
   sweep->add_flag("--quiet", o.quiet, "Print nothing but errors");
   return {sweep, [s, exe] {
