@@ -223,6 +223,7 @@ void BodyContact::gather_patches(const Model& m) {
 void BodyContact::compute(const Model& m, double step_dt, std::vector<double>& f) {
   energy_ = dissipated_ = max_penetration_ = max_penetration_per_size_ = 0.0;
   touching_ = 0;
+  deepest_bodies_ = {-1, -1};
   if (!active_) return;
   for (std::size_t q = 0; q < nodes_.size(); ++q) {
     const std::int32_t n = nodes_[q];
@@ -249,9 +250,12 @@ void BodyContact::compute(const Model& m, double step_dt, std::vector<double>& f
     ++touching_;
     energy_ += r.energy;
     max_penetration_ = std::max(max_penetration_, r.penetration);
-    max_penetration_per_size_ = std::max(
-        max_penetration_per_size_, r.penetration / std::min(m.contact_tet_depth[pairs_[q].i],
-                                                            m.contact_tet_depth[pairs_[q].j]));
+    const double per_size = r.penetration / std::min(m.contact_tet_depth[pairs_[q].i],
+                                                     m.contact_tet_depth[pairs_[q].j]);
+    if (per_size > max_penetration_per_size_) {
+      max_penetration_per_size_ = per_size;
+      deepest_bodies_ = {m.contact_tet_body[pairs_[q].i], m.contact_tet_body[pairs_[q].j]};
+    }
     const auto& ta = m.contact_tets[pairs_[q].i];
     const auto& tb = m.contact_tets[pairs_[q].j];
     for (int c = 0; c < 4; ++c)

@@ -68,6 +68,8 @@ class BodyContact final : public ContactModel {
   // Largest over the same pairs of the depth over the element size (the thinner of the two
   // elements' depths behind their boundary faces, Model::contact_tet_depth).
   double max_penetration_per_size() const { return max_penetration_per_size_; }
+  // The bodies of the pair with that largest depth per element size (-1, -1: none touching).
+  std::pair<int, int> deepest_bodies() const { return deepest_bodies_; }
   // Largest over nodes of (sum of the contact stiffness on the node) / (its mass): the stable
   // step bound adds it to the element frequency squared.
   double max_stiffness_over_mass() const { return max_k_over_m_; }
@@ -133,6 +135,7 @@ class BodyContact final : public ContactModel {
   double energy_ = 0.0, dissipated_ = 0.0, max_k_over_m_ = 0.0, max_penetration_ = 0.0,
          max_penetration_per_size_ = 0.0;
   std::size_t touching_ = 0;
+  std::pair<int, int> deepest_bodies_{-1, -1};
   bool collect_patches_ = false;
   std::vector<ContactPatch> patches_;
   std::vector<std::pair<std::uint64_t, std::uint32_t>> patch_keys_;  // (body pair, result index)

@@ -162,6 +162,9 @@ struct ContactSettings {
   // acting on the bodies' rigid motion (engine/impact_damping.hpp): sets the restitution of an
   // impact, e = exp(-pi xi / sqrt(1 - xi^2)) for a linear contact. 0: elastic impacts.
   double impact_damping = 0.0;
+  // The deepest overlap allowed at t = 0, between bodies or behind a wall, as a fraction of the
+  // element size there (engine/initial_overlap.hpp): a packing's round-off, not a scene error.
+  double initial_overlap = 0.01;
   std::vector<ContactPairSpec> pairs;
   // Friction coefficient between two bodies: a pair's own, else the common one.
   double friction_between(int a, int b) const {

@@ -45,6 +45,7 @@ WallContact::WallContact(const Model& m, bool collect_patches)
   stiffness_.assign(m.walls.size(), 0.0);
   penetration_.assign(m.walls.size(), 0.0);
   penetration_per_size_.assign(m.walls.size(), 0.0);
+  deepest_body_.assign(m.walls.size(), -1);
   if (collect_patches_) patches_.assign(m.bodies.size() * m.walls.size(), ContactPatch{});
 }
 
@@ -52,6 +53,7 @@ void WallContact::compute(Model& m, double step_dt, std::vector<double>& f, Cont
   for (auto& w : m.walls) w.force.setZero();
   std::fill(penetration_.begin(), penetration_.end(), 0.0);
   std::fill(penetration_per_size_.begin(), penetration_per_size_.end(), 0.0);
+  std::fill(deepest_body_.begin(), deepest_body_.end(), -1);
   if (collect_patches_) std::fill(patches_.begin(), patches_.end(), ContactPatch{});
   if (!active_) return;
   std::visit(
@@ -143,7 +145,8 @@ void WallContact::compute_with(Model& m, double step_dt, std::vector<double>& f,
         continue;
       }
       penetration_[wi] = std::max(penetration_[wi], d);
-      penetration_per_size_[wi] = std::max(penetration_per_size_[wi], d / s.depth);
+      if (d / s.depth > penetration_per_size_[wi])
+        penetration_per_size_[wi] = d / s.depth, deepest_body_[wi] = s.body;
       if (collect_patches_) {
         const double fn = k * d;
         ContactPatch& q = patches_[static_cast<std::size_t>(s.body) * nw + wi];

@@ -47,6 +47,8 @@ class WallContact final : public ContactModel {
   // the largest depth over the element depth behind the node.
   double max_penetration(std::size_t wall) const { return penetration_[wall]; }
   double max_penetration_per_size(std::size_t wall) const { return penetration_per_size_[wall]; }
+  // The body of the node with that largest depth per element size (-1: none).
+  int deepest_body(std::size_t wall) const { return deepest_body_[wall]; }
   double driven_wall_step() const { return driven_wall_step_; }
   // Saves or loads (engine/state_archive.hpp) the reach list with its friction springs, what it
   // was built from, the unbooked releases and the per-wall stiffness, depth and step figures.
@@ -82,6 +84,7 @@ class WallContact final : public ContactModel {
   std::vector<ContactPatch> patches_;  // per (body, wall), body-major
   std::vector<double> stiffness_;      // per wall: the contact stiffness near it
   std::vector<double> penetration_, penetration_per_size_;  // per wall, last compute()
+  std::vector<int> deepest_body_;                           // per wall, last compute()
   double damping_factor_ = 1.0, driven_wall_step_ = HUGE_VAL;
 };
 

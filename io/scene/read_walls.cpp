@@ -272,7 +272,8 @@ void Reader::read_contact(const toml::table& root, ModelSpec& spec, toml::table&
   if (const toml::node* n = root.get("contact")) {
     const toml::table& t = require_table(n, "contact");
     check_keys(t, "contact",
-               {"law", "wall_law", "penalty_factor", "friction", "impact_damping", "pairs"});
+               {"law", "wall_law", "penalty_factor", "friction", "impact_damping",
+                "initial_overlap", "pairs"});
     c.law = registered_name<BodyPairLaw>(law_name(t, "law", c.law, body_pair_law_names()));
     c.wall_law = registered_name<WallLaw>(law_name(t, "wall_law", c.wall_law, wall_law_names()));
     c.penalty_factor = opt_penalty_factor(t, "contact").value_or(c.penalty_factor);
@@ -285,6 +286,11 @@ void Reader::read_contact(const toml::table& root, ModelSpec& spec, toml::table&
       fail(t.get("impact_damping"), "contact.impact_damping",
            "must be a fraction of critical damping in [0, 1), got " +
                format_number(c.impact_damping));
+    c.initial_overlap = number(t, "initial_overlap", "contact", c.initial_overlap, &t);
+    if (!(c.initial_overlap >= 0.0 && c.initial_overlap <= 1.0))
+      fail(t.get("initial_overlap"), "contact.initial_overlap",
+           "must be a fraction of the element size in [0, 1], got " +
+               format_number(c.initial_overlap));
     std::vector<std::string> body_names;
     for (const auto& b : spec.bodies) body_names.push_back(b.name);
     toml::array pairs_out;
@@ -335,6 +341,7 @@ void Reader::read_contact(const toml::table& root, ModelSpec& spec, toml::table&
     out.insert_or_assign("penalty_factor", "auto");
   out.insert_or_assign("friction", c.friction);
   out.insert_or_assign("impact_damping", c.impact_damping);
+  out.insert_or_assign("initial_overlap", c.initial_overlap);
 }
 
 }  // namespace femdem::scene

@@ -96,5 +96,65 @@ TEST(HostileInput, AStepFarAboveTheStableOneStopsOnTheEnergyBalance) {
   EXPECT_EQ(nlohmann::json::parse(in)["status"], "unstable");
 }
 
+const char* const kTwoSpheres = R"([simulation]
+end_time = 1e-5
+[[materials]]
+name = "steel"
+model = "elastic"
+density = 7850.0
+youngs_modulus = 210e9
+poisson_ratio = 0.3
+[[bodies]]
+name = "a"
+material = "steel"
+mesh = { generator = "sphere", radius = 4e-3, element_size = 2e-3 }
+position = [0.0, 0.0, 5e-3]
+[[bodies]]
+name = "b"
+material = "steel"
+mesh = { generator = "sphere", radius = 4e-3, element_size = 2e-3 }
+position = [0.0, 0.0, 13.5e-3]
+[[walls]]
+name = "floor"
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 1.0]
+)";
+
+// Bodies overlapping at the start are named by `check` and `run` (exit 2, nothing written)
+// rather than run into "element inverted, lower time_step_safety".
+TEST(HostileInput, BodiesOverlappingAtTheStartAreNamedWithTheFix) {
+  const fs::path scene = fs::path(FEMDEM_TEST_TMP) / "hostile" / "two_spheres.toml";
+  fs::create_directories(scene.parent_path());
+  std::ofstream(scene) << kTwoSpheres;
+  const struct {
+    std::string set, message;
+  } cases[] = {
+      {"bodies.b.position=[0,0,12e-3]",
+       "contact.initial_overlap: bodies 'a' and 'b' overlap at the start"},
+      {"bodies.a.position=[0,0,3.5e-3]",
+       "contact.initial_overlap: body 'a' reaches 0.0005 m behind wall 'floor' at the start"},
+  };
+  for (const auto& c : cases)
+    for (const std::string command : {"check", "run"}) {
+      SCOPED_TRACE(command + " --set " + c.set);
+      const fs::path out = out_dir("overlap");
+      const Timed t =
+          femdem(command + " '" + scene.string() + "' --set " + c.set +
+                 (command == "run" ? " --quiet --out '" + out.string() + "'" : std::string()));
+      EXPECT_EQ(t.result.code, 2) << t.result.output;
+      EXPECT_NE(t.result.output.find(c.message), std::string::npos) << t.result.output;
+      EXPECT_NE(t.result.output.find("or allow that much with contact.initial_overlap"),
+                std::string::npos);
+      EXPECT_EQ(t.result.output.find("Scene OK."), std::string::npos);
+      EXPECT_FALSE(fs::exists(out));
+    }
+  // apart, and a stated allowance, pass
+  EXPECT_EQ(femdem("check '" + scene.string() + "'").result.code, 0);
+  EXPECT_EQ(femdem("check '" + scene.string() +
+                   "' --set bodies.b.position=[0,0,12e-3] --set contact.initial_overlap=1")
+                .result.code,
+            0);
+}
+
 }  // namespace
 }  // namespace femdem::test

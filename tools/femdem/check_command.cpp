@@ -8,6 +8,8 @@
 #include "elements/tet_geometry.hpp"
 #include "engine/contact_stiffness.hpp"
 #include "engine/errors.hpp"
+#include "engine/initial_overlap.hpp"
+#include "engine/simulation.hpp"
 #include "io/strain_path.hpp"
 #include "materials/material_point.hpp"
 #include "tools/femdem/exit_codes.hpp"
@@ -181,6 +183,15 @@ void print_scene_summary(const SceneFile& scene) {
                std::exp(-M_PI * m.contact.impact_damping /
                         std::sqrt(1.0 - m.contact.impact_damping * m.contact.impact_damping)));
   fmt::print("\n\n");
+  // the model as a run builds it, with its first force evaluation: the overlaps at the start
+  // (InputError) and the step
+  const Simulation sim(build_model(m));
+  check_initial_overlap(sim);
+  fmt::print(
+      "Model\n  {} nodes, {} TET10 elements; stable step {:.4g} s, step {:.4g} s: about {:.0f} "
+      "steps to the end time\n\n",
+      sim.model().node_count, sim.model().element_count, sim.stable_dt(), sim.dt(),
+      s.end_time / sim.dt());
   fmt::print("Scene OK.\n");
 }
 

@@ -18,6 +18,7 @@
 
 #include "engine/compaction.hpp"
 #include "engine/errors.hpp"
+#include "engine/initial_overlap.hpp"
 #include "engine/simulation.hpp"
 #include "femdem_version.hpp"
 #include "io/checkpoint/checkpoint_file.hpp"
@@ -254,6 +255,7 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
 
   // Everything that can fail on bad input happens before the first file is written.
   Simulation sim(build_model(spec));
+  if (!resume) check_initial_overlap(sim);  // (a resumed run passed it when it started)
   const Model& m = sim.model();
   const std::filesystem::path out = options.out_dir;
   const std::filesystem::path checkpoint_path = out / kCheckpointFile;
