@@ -12,6 +12,7 @@
 #include <string>
 
 #include "support/run_command.hpp"
+#include "support/steel_ball_scene.hpp"
 
 namespace femdem::test {
 namespace {
@@ -96,29 +97,14 @@ TEST(HostileInput, AStepFarAboveTheStableOneStopsOnTheEnergyBalance) {
   EXPECT_EQ(nlohmann::json::parse(in)["status"], "unstable");
 }
 
-const char* const kTwoSpheres = R"([simulation]
-end_time = 1e-5
-[[materials]]
-name = "steel"
-model = "elastic"
-density = 7850.0
-youngs_modulus = 210e9
-poisson_ratio = 0.3
-[[bodies]]
-name = "a"
-material = "steel"
-mesh = { generator = "sphere", radius = 4e-3, element_size = 2e-3 }
-position = [0.0, 0.0, 5e-3]
+// the shared ball and a second one 1.4 mm above it
+const std::string kTwoSpheres = steel_ball_scene("two spheres", "end_time = 1e-5\n", R"(
 [[bodies]]
 name = "b"
 material = "steel"
 mesh = { generator = "sphere", radius = 4e-3, element_size = 2e-3 }
 position = [0.0, 0.0, 13.5e-3]
-[[walls]]
-name = "floor"
-point = [0.0, 0.0, 0.0]
-normal = [0.0, 0.0, 1.0]
-)";
+)");
 
 // Bodies overlapping at the start are named by `check` and `run` (exit 2, nothing written)
 // rather than run into "element inverted, lower time_step_safety".
@@ -129,10 +115,10 @@ TEST(HostileInput, BodiesOverlappingAtTheStartAreNamedWithTheFix) {
   const struct {
     std::string set, message;
   } cases[] = {
-      {"bodies.b.position=[0,0,12e-3]",
-       "contact.initial_overlap: bodies 'a' and 'b' overlap at the start"},
-      {"bodies.a.position=[0,0,3.5e-3]",
-       "contact.initial_overlap: body 'a' reaches 0.0005 m behind wall 'floor' at the start"},
+      {"bodies.b.position=[0,0,11e-3]",
+       "contact.initial_overlap: bodies 'ball' and 'b' overlap at the start"},
+      {"bodies.ball.position=[0,0,3.5e-3]",
+       "contact.initial_overlap: body 'ball' reaches 0.0005 m behind wall 'floor' at the start"},
   };
   for (const auto& c : cases)
     for (const std::string command : {"check", "run"}) {
@@ -151,7 +137,7 @@ TEST(HostileInput, BodiesOverlappingAtTheStartAreNamedWithTheFix) {
   // apart, and a stated allowance, pass
   EXPECT_EQ(femdem("check '" + scene.string() + "'").result.code, 0);
   EXPECT_EQ(femdem("check '" + scene.string() +
-                   "' --set bodies.b.position=[0,0,12e-3] --set contact.initial_overlap=1")
+                   "' --set bodies.b.position=[0,0,11.9e-3] --set contact.initial_overlap=0.5")
                 .result.code,
             0);
 }

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "support/run_command.hpp"
+#include "support/steel_ball_scene.hpp"
 
 extern char** environ;
 
@@ -27,27 +28,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const char* const kScene = R"(title = "output folder"
-[simulation]
-end_time = 2e-5
-output_interval = 2e-6
-[[materials]]
-name = "steel"
-model = "elastic"
-density = 7850.0
-youngs_modulus = 210e9
-poisson_ratio = 0.3
-[[bodies]]
-name = "ball"
-material = "steel"
-mesh = { generator = "sphere", radius = 4e-3, element_size = 2e-3 }
-position = [0.0, 0.0, 4.05e-3]
-velocity = [0.0, 0.0, -2.0]
-[[walls]]
-name = "floor"
-point = [0.0, 0.0, 0.0]
-normal = [0.0, 0.0, 1.0]
-)";
+const std::string kScene =
+    steel_ball_scene("output folder", "end_time = 2e-5\noutput_interval = 2e-6\n");
 
 fs::path dir() {
   const fs::path d = fs::path(FEMDEM_TEST_TMP) / "output_folder";

@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "support/run_command.hpp"
+#include "support/steel_ball_scene.hpp"
 
 extern char** environ;
 
@@ -207,37 +208,14 @@ die_perimeter = 32e-3
 
 // A sphere that hits a floor with heavy impact damping and leaves it slowly: at rest by the
 // kinetic-energy criterion soon after the impact, well before the end time.
-const char* const kRest = R"(title = "restart: stop at rest"
-[simulation]
-end_time = 1e-3
+const std::string kRest = steel_ball_scene("restart: stop at rest", R"(end_time = 1e-3
 output_interval = 2e-5
 history_interval = 2e-6
 rest_kinetic_fraction = 0.05
 rest_hold_time = 4e-5
 checkpoint_interval = 2e-5
-
-[[materials]]
-name = "steel"
-model = "elastic"
-density = 7850.0
-youngs_modulus = 210e9
-poisson_ratio = 0.3
-
-[[bodies]]
-name = "ball"
-material = "steel"
-mesh = { generator = "sphere", radius = 4e-3, element_size = 2e-3 }
-position = [0.0, 0.0, 4.05e-3]
-velocity = [0.0, 0.0, -2.0]
-
-[[walls]]
-name = "floor"
-point = [0.0, 0.0, 0.0]
-normal = [0.0, 0.0, 1.0]
-
-[contact]
-impact_damping = 0.6
-)";
+)",
+                                           "\n[contact]\nimpact_damping = 0.6\n");
 
 fs::path tmp_dir() {
   return fs::path(FEMDEM_TEST_TMP) / "resume";
@@ -436,7 +414,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, Resume,
                                             ::testing::Values(1, 2)));
 
 TEST(ResumeAtRest, AKilledRunThatComesToRestStopsWhereTheUninterruptedOneDoes) {
-  const Reference ref = reference("rest", kRest, "killed");
+  const Reference ref = reference("rest", kRest.c_str(), "killed");
   const nlohmann::json s = nlohmann::json::parse(read_text(ref.out / "summary.json"));
   ASSERT_TRUE(s["extra"].contains("at_rest_time")) << "the scene must come to rest";
   EXPECT_LT(s["end_time"].get<double>(), 1e-3);
@@ -451,7 +429,7 @@ TEST(ResumeAtRest, AKilledRunThatComesToRestStopsWhereTheUninterruptedOneDoes) {
 }
 
 TEST(ResumeAtRest, OtherRestCriteriaLookForRestAnew) {
-  const Reference ref = reference("rest", kRest, "rearmed");
+  const Reference ref = reference("rest", kRest.c_str(), "rearmed");
   const nlohmann::json before = nlohmann::json::parse(read_text(ref.out / "summary.json"));
   const double rest_time = before["extra"]["at_rest_time"].get<double>();
   const CommandResult r = resume(ref.out, "--set simulation.rest_kinetic_fraction=0.001");
