@@ -3,6 +3,7 @@
 
 #include <toml++/toml.h>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -70,6 +71,25 @@ ModelSpec Reader::read(const toml::table& root, const std::string& stem, toml::t
 using scene::Reader;
 using scene::resolved_scene_text;
 
+namespace {
+
+// toml++'s words, except where they hide the usual cause: a string left open reads as a line
+// break inside it ("unescaped control characters ...").
+std::string syntax_error_text(const std::string& text, std::string_view description, int line) {
+  const bool control = description.find("unescaped control characters") != std::string_view::npos;
+  if (control && line > 0) {
+    std::istringstream lines(text);
+    std::string l;
+    for (int i = 0; i < line && std::getline(lines, l);) ++i;
+    if (std::count(l.begin(), l.end(), '"') % 2 == 1)
+      return "unterminated string: a string opened on this line does not close on it (add the "
+             "closing \", or use a multi-line string \"\"\"...\"\"\")";
+  }
+  return std::string(description);
+}
+
+}  // namespace
+
 SceneFile load_scene(const std::string& path, const std::vector<std::string>& overrides) {
   SceneFile scene;
   scene.path = path;
@@ -89,9 +109,10 @@ SceneFile load_scene(const std::string& path, const std::vector<std::string>& ov
   try {
     root = toml::parse(text.str(), path);
   } catch (const toml::parse_error& e) {
-    throw InputError("TOML syntax error: " + std::string(e.description()), path,
-                     static_cast<int>(e.source().begin.line),
-                     static_cast<int>(e.source().begin.column));
+    const int line = static_cast<int>(e.source().begin.line);
+    const int column = static_cast<int>(e.source().begin.column);
+    throw InputError("TOML syntax error: " + syntax_error_text(text.str(), e.description(), line),
+                     path, line, column);
   }
 
   Reader reader(path, fs::path(scene.directory));

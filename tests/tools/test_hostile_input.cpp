@@ -142,5 +142,24 @@ TEST(HostileInput, BodiesOverlappingAtTheStartAreNamedWithTheFix) {
             0);
 }
 
+TEST(HostileInput, WeakMessagesSayWhatIsWrong) {
+  // a string left open: named as such, with the file, line and column
+  const fs::path bad = fs::path(FEMDEM_TEST_TMP) / "hostile" / "open_string.toml";
+  fs::create_directories(bad.parent_path());
+  std::ofstream(bad) << "[simulation]\nend_time = 1\ntitle = \"abc\n";
+  Timed t = femdem("check '" + bad.string() + "'");
+  EXPECT_EQ(t.result.code, 2);
+  EXPECT_NE(t.result.output.find("open_string.toml:3:13: TOML syntax error: unterminated string"),
+            std::string::npos)
+      << t.result.output;
+  // a number option given a word: no 309-digit range
+  t = femdem("mesh part.stl --size abc");
+  EXPECT_EQ(t.result.code, 2);
+  EXPECT_NE(t.result.output.find("--size: must be a positive number, got 'abc'"), std::string::npos)
+      << t.result.output;
+  EXPECT_EQ(t.result.output.find("179769313486231570814527423731704356798070567525844996598917"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace femdem::test

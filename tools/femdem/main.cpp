@@ -3,6 +3,8 @@
 // and `femdem mesh SURFACE --size H` (docs/SCENES.md): the options of each command, and the
 // exit code of what went wrong (exit_codes.hpp). The commands themselves live beside it.
 #include <fmt/core.h>
+#include <charconv>
+#include <cmath>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -32,6 +34,19 @@ using femdem::kExitBadInput;
 using femdem::kExitFailure;
 using femdem::kExitOk;
 using femdem::kExitUnstable;
+
+// A positive finite number, said in words (CLI11's own PositiveNumber prints its range with the
+// 309 digits of the largest double).
+const CLI::Validator kPositiveNumber(
+    [](std::string& text) {
+      double v = 0.0;
+      const char* end = text.data() + text.size();
+      const auto r = std::from_chars(text.data(), end, v);
+      if (r.ec != std::errc() || r.ptr != end || !(v > 0.0) || !std::isfinite(v))
+        return "must be a positive number, got '" + text + "'";
+      return std::string();
+    },
+    "POSITIVE");
 
 // --threads: the scene key's bounds (simulation.threads), in CLI11's words "in range 0 - 4096".
 const CLI::Range kThreadsRange(0, 4096);
@@ -272,10 +287,10 @@ Command add_mesh(CLI::App& app) {
   mesh->add_option("--size", o.element_size,
                    "Target edge length of the tetrahedra, in m (after --scale)")
       ->required()
-      ->check(CLI::PositiveNumber);
+      ->check(kPositiveNumber);
   mesh->add_option("--scale", o.scale,
                    "Factor from the file's units to m, e.g. 0.001 for mm (default 1)")
-      ->check(CLI::PositiveNumber);
+      ->check(kPositiveNumber);
   mesh->add_option("-o,--output", s->output, "Output .msh file (default: INPUT with .msh)");
   mesh->add_option("--feature-angle", o.feature_angle,
                    "Edges whose faces' normals differ by more than this (degrees) are kept "
