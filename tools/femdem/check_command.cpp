@@ -13,6 +13,7 @@
 #include "io/strain_path.hpp"
 #include "materials/material_point.hpp"
 #include "tools/femdem/exit_codes.hpp"
+#include "tools/femdem/run/memory_check.hpp"
 #include "tools/femdem/text_format.hpp"
 
 namespace femdem {
@@ -185,6 +186,8 @@ void print_scene_summary(const SceneFile& scene) {
   fmt::print("\n\n");
   // the model as a run builds it, with its first force evaluation: the overlaps at the start
   // (InputError) and the step
+  fmt::print("Memory\n  {}\n\n", memory_line(m));
+  check_memory(m);
   const Simulation sim(build_model(m));
   check_initial_overlap(sim);
   fmt::print(

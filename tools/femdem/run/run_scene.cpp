@@ -27,6 +27,7 @@
 #include "io/results/summary_writer.hpp"
 #include "io/scene/scene_digest.hpp"
 #include "tools/femdem/run/compaction_curve.hpp"
+#include "tools/femdem/run/memory_check.hpp"
 #include "tools/femdem/run/output_folder.hpp"
 #include "tools/femdem/run/output_schedule.hpp"
 #include "tools/femdem/run/output_tables.hpp"
@@ -254,6 +255,7 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
   if (set.history_interval <= 0.0) set.history_interval = set.output_interval / 20.0;
 
   // Everything that can fail on bad input happens before the first file is written.
+  check_memory(spec);
   Simulation sim(build_model(spec));
   if (!resume) check_initial_overlap(sim);  // (a resumed run passed it when it started)
   const Model& m = sim.model();
