@@ -75,22 +75,6 @@ const char* type_name(StateArchive::Type t) {
   return "?";
 }
 
-// HDF5's own error printing off while femdem reports the errors itself.
-class QuietErrors {
- public:
-  QuietErrors() {
-    H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  }
-  ~QuietErrors() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
-  QuietErrors(const QuietErrors&) = delete;
-  QuietErrors& operator=(const QuietErrors&) = delete;
-
- private:
-  H5E_auto2_t func_ = nullptr;
-  void* data_ = nullptr;
-};
-
 void write_string_attribute(hid_t obj, const char* name, const std::string& value,
                             const std::string& file) {
   Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
@@ -111,21 +95,6 @@ void write_number_attribute(hid_t obj, const char* name, hid_t file_t, hid_t mem
   if (!attr.valid() || H5Awrite(attr.get(), mem_t, &value) < 0)
     throw std::runtime_error("cannot write attribute '" + std::string(name) + "' of '" + file +
                              "'");
-}
-
-bool read_string_attribute(hid_t obj, const char* name, std::string& out) {
-  if (H5Aexists(obj, name) <= 0) return false;
-  Handle attr(H5Aopen(obj, name, H5P_DEFAULT), H5Aclose);
-  Handle type(H5Aget_type(attr.get()), H5Tclose);
-  if (!type.valid() || H5Tget_class(type.get()) != H5T_STRING || H5Tis_variable_str(type.get()))
-    return false;
-  std::string s(H5Tget_size(type.get()), '\0');
-  Handle mem(H5Tcopy(H5T_C_S1), H5Tclose);
-  H5Tset_size(mem.get(), s.size());
-  if (H5Aread(attr.get(), mem.get(), s.data()) < 0) return false;
-  while (!s.empty() && s.back() == '\0') s.pop_back();
-  out = s;
-  return true;
 }
 
 template <class T>

@@ -41,13 +41,18 @@ void append_double(std::string& out, double v) {
 }  // namespace
 
 HistoryWriter::HistoryWriter(const std::filesystem::path& path, std::vector<std::string> columns,
-                             double flush_interval_s)
+                             double flush_interval_s, int)
     : path_(path),
       columns_(std::move(columns)),
       flush_interval_(std::chrono::duration_cast<std::chrono::steady_clock::duration>(
           std::chrono::duration<double>(flush_interval_s > 0 ? flush_interval_s : 0.0))),
       last_flush_(std::chrono::steady_clock::now()) {
   if (columns_.empty()) throw std::invalid_argument("history.csv: no columns");
+}
+
+HistoryWriter::HistoryWriter(const std::filesystem::path& path, std::vector<std::string> columns,
+                             double flush_interval_s)
+    : HistoryWriter(path, std::move(columns), flush_interval_s, 0) {
   fd_ = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd_ < 0) {
     throw std::runtime_error("cannot create '" + path_.string() + "': " + std::strerror(errno));
@@ -58,11 +63,7 @@ HistoryWriter::HistoryWriter(const std::filesystem::path& path, std::vector<std:
 
 HistoryWriter::HistoryWriter(const std::filesystem::path& path, std::vector<std::string> columns,
                              ContinueAt at, double flush_interval_s)
-    : path_(path),
-      columns_(std::move(columns)),
-      flush_interval_(std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-          std::chrono::duration<double>(flush_interval_s > 0 ? flush_interval_s : 0.0))),
-      last_flush_(std::chrono::steady_clock::now()) {
+    : HistoryWriter(path, std::move(columns), flush_interval_s, 0) {
   check_continuable(path_, columns_, at);
   fd_ = ::open(path_.c_str(), O_WRONLY | O_CLOEXEC);
   if (fd_ < 0 || ::ftruncate(fd_, static_cast<off_t>(at.bytes)) != 0 ||

@@ -57,6 +57,9 @@ class HistoryWriter {
   std::uint64_t bytes_written() const { return file_size_; }
 
  private:
+  // The members both public constructors set (the file is theirs to open).
+  HistoryWriter(const std::filesystem::path& path, std::vector<std::string> columns,
+                double flush_interval_s, int);
   static std::string header_line(const std::vector<std::string>& columns);
   std::filesystem::path path_;
   std::vector<std::string> columns_;

@@ -508,26 +508,10 @@ std::string results_scene_digest(const std::filesystem::path& folder) {
   const std::filesystem::path path = folder / kH5Name;
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) return "";
-  H5E_auto2_t func = nullptr;
-  void* data = nullptr;
-  H5Eget_auto2(H5E_DEFAULT, &func, &data);
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  const QuietErrors quiet;
   std::string digest;
-  const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, H5P_DEFAULT);
-  if (f >= 0) {
-    if (H5Aexists(f, "scene_digest") > 0) {
-      const hid_t a = H5Aopen(f, "scene_digest", H5P_DEFAULT);
-      const hid_t t = H5Aget_type(a);
-      if (H5Tget_class(t) == H5T_STRING && !H5Tis_variable_str(t)) {
-        std::string s(H5Tget_size(t), '\0');
-        if (H5Aread(a, t, s.data()) >= 0) digest = s.substr(0, s.find('\0'));
-      }
-      H5Tclose(t);
-      H5Aclose(a);
-    }
-    H5Fclose(f);
-  }
-  H5Eset_auto2(H5E_DEFAULT, func, data);
+  Handle f(H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, H5P_DEFAULT), H5Fclose);
+  if (f.valid()) read_string_attribute(f.get(), "scene_digest", digest);
   return digest;
 }
 
