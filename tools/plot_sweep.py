@@ -19,6 +19,7 @@ import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "python"))
 import femdem  # noqa: E402  (tools/python/femdem; needs neither numpy nor matplotlib)
+from femdem.plotting import draw_flat_flat, key_label, key_unit, legend_outside  # noqa: E402
 
 
 def number(text):
@@ -89,7 +90,10 @@ def main():
     group_keys = list(groups)
 
     def group_label(g):
-        return ", ".join(f"{k.split('.')[-1]}={v}" for k, v in zip(keys[1:], g))
+        def unit(k):
+            u = key_unit(k)
+            return f" {u}" if u and u != "-" else ""
+        return ", ".join(f"{k.split('.')[-1]}={v}{unit(k)}" for k, v in zip(keys[1:], g))
 
     bodies = []
     for name in header:
@@ -131,7 +135,8 @@ def main():
     log_x = ticks is None and xs_all[0] > 0 and xs_all[-1] / xs_all[0] >= 100.0
     written = []
     for fname, title, ylabel, series, log_y in figures:
-        fig, ax = plt.subplots(figsize=(7, 4.5))
+        fig, ax = plt.subplots(figsize=(8.5, 4.5))
+        plotted = []
         for gi, g in enumerate(group_keys):
             color = f"C{gi % 10}"
             for column, suffix, style in series:
@@ -141,23 +146,25 @@ def main():
                              if number(r[column]) is not None)
                 if not pts:
                     continue
+                plotted.append([p[1] for p in pts])
                 parts = [p for p in (group_label(g), suffix) if p]
                 ax.plot([p[0] for p in pts], [p[1] for p in pts], style,
                         color=color if len(group_keys) > 1 else None,
                         label=", ".join(parts) if parts else None, ms=4)
-        ax.set_xlabel(xlabel)
+        ax.set_xlabel(key_label(xlabel))
         ax.set_ylabel(ylabel)
         ax.set_title(title)
         if log_x:
             ax.set_xscale("log")
         if log_y:
             ax.set_yscale("log")
+        else:
+            draw_flat_flat(ax, plotted)
         if ticks is not None:
             ax.set_xticks(range(len(ticks)))
             ax.set_xticklabels(ticks, rotation=30, ha="right")
         ax.grid(True, alpha=0.3)
-        if ax.get_legend_handles_labels()[0]:
-            ax.legend(fontsize=8)
+        legend_outside(ax)
         fig.tight_layout()
         path = os.path.join(out, fname)
         fig.savefig(path, dpi=110)

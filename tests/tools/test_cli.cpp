@@ -7,7 +7,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "support/run_command.hpp"
 
@@ -185,4 +187,44 @@ TEST(Cli, EveryShippedSceneChecks) {
     EXPECT_EQ(r.code, 0) << entry.path() << "\n" << r.output;
   }
   EXPECT_GE(scenes, 9);
+}
+
+TEST(Cli, CheckTimesTheFirstStepsAndEstimatesTheRun) {
+  const fs::path dir = tmp_dir("timed_sample");
+  write_file(dir / "cube.toml", kGoodScene);
+  const Result r = run_femdem("check cube.toml", dir);
+  ASSERT_EQ(r.code, 0) << r.output;
+  // "about 49 steps to the end time" then "timed sample: N steps in T s on 1 thread (R steps/s):
+  // about D for the run at that rate"
+  const std::size_t at = r.output.find("timed sample: ");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  const long sampled = std::stol(r.output.substr(at + 14));
+  EXPECT_GE(sampled, 3) << r.output;
+  EXPECT_TRUE(contains(r.output.substr(at), "steps/s): about ")) << r.output;
+  EXPECT_TRUE(contains(r.output.substr(at), " for the run at that rate")) << r.output;
+  int entries = 0;  // still writes nothing
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++entries;
+  EXPECT_EQ(entries, 1);
+}
+
+TEST(Cli, PipedProgressPrintsALineEveryTenthOfTheRun) {
+  const fs::path dir = tmp_dir("piped_progress");
+  write_file(dir / "cube.toml", kGoodScene);
+  // 1e-3 s at the cube's step of about 2 us: some 500 steps, a tenth every 50, far more often
+  // than the minute that would also print a line
+  const Result r =
+      run_femdem("run cube.toml --out out --set simulation.end_time=1e-3 --no-plot", dir);
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::vector<double> percents;
+  std::istringstream lines(r.output);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("t = ", 0) != 0) continue;
+    const std::size_t open = line.find('(');
+    ASSERT_NE(open, std::string::npos) << line;
+    percents.push_back(std::stod(line.substr(open + 1)));
+  }
+  ASSERT_GE(percents.size(), 9u) << r.output;
+  ASSERT_LE(percents.size(), 10u) << r.output;
+  for (std::size_t i = 0; i < percents.size(); ++i)  // one line per tenth, in order
+    EXPECT_NEAR(percents[i], 10.0 * static_cast<double>(i + 1), 3.0) << r.output;
 }

@@ -3,6 +3,7 @@
 
 #include <fmt/core.h>
 
+#include <chrono>
 #include <cmath>
 
 #include "elements/tet_geometry.hpp"
@@ -14,6 +15,8 @@
 #include "materials/material_point.hpp"
 #include "tools/femdem/exit_codes.hpp"
 #include "tools/femdem/run/memory_check.hpp"
+#include "tools/femdem/run/run_log.hpp"
+#include "tools/femdem/run/thread_count.hpp"
 #include "tools/femdem/text_format.hpp"
 
 namespace femdem {
@@ -26,6 +29,12 @@ std::string penalty_text(double factor, bool wall) {
   return fmt::format("automatic ({:g} x the P-wave modulus of the {})",
                      wall ? kAutoWallFactor : kAutoPairFactor, wall ? "body" : "softer side");
 }
+
+// The timed sample of `femdem check`: at least this many steps, then more until this much wall
+// time or this many steps.
+constexpr std::int64_t kSampleMinSteps = 3;
+constexpr std::int64_t kSampleMaxSteps = 1000;
+constexpr double kSampleSeconds = 1.0;
 
 }  // namespace
 
@@ -188,13 +197,31 @@ void print_scene_summary(const SceneFile& scene) {
   // (InputError) and the step
   fmt::print("Memory\n  {}\n\n", memory_line(m));
   check_memory(m);
-  const Simulation sim(build_model(m));
+  Simulation sim(build_model(m));
   check_initial_overlap(sim);
+  const double steps = s.end_time / sim.dt();
   fmt::print(
       "Model\n  {} nodes, {} TET10 elements; stable step {:.4g} s, step {:.4g} s: about {:.0f} "
-      "steps to the end time\n\n",
-      sim.model().node_count, sim.model().element_count, sim.stable_dt(), sim.dt(),
-      s.end_time / sim.dt());
+      "steps to the end time\n",
+      sim.model().node_count, sim.model().element_count, sim.stable_dt(), sim.dt(), steps);
+  // A timed sample of the run's own first steps (nothing is written): the rate the run starts
+  // at. Contact, yielding and the outputs change it as the run goes.
+  const int threads = use_threads(-1, s.threads);
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  const auto seconds = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+  std::int64_t sampled = 0;
+  while (sim.time() < s.end_time &&
+         (sampled < kSampleMinSteps || (sampled < kSampleMaxSteps && seconds() < kSampleSeconds))) {
+    sim.step();
+    ++sampled;
+  }
+  const double per_step = seconds() / static_cast<double>(std::max<std::int64_t>(sampled, 1));
+  fmt::print(
+      "  timed sample: {} steps in {:.2g} s on {} thread{} ({:.0f} steps/s): about {} for "
+      "the run at that rate\n\n",
+      sampled, seconds(), threads, threads == 1 ? "" : "s", 1.0 / per_step,
+      format_duration(per_step * steps));
   fmt::print("Scene OK.\n");
 }
 

@@ -161,7 +161,9 @@ Command add_check(CLI::App& app) {
   };
   auto s = std::make_shared<State>();
   CLI::App* check = app.add_subcommand(
-      "check", "Read the scene, build the model and print a summary; run and write nothing");
+      "check",
+      "Read the scene, build the model, time its first steps and print a summary; write "
+      "nothing");
   check->add_option("scene", s->scene_path, "Scene file (TOML)")->required();
   check->add_option("--set", s->overrides, "Override a scene value: KEY=VALUE (repeatable)")
       ->allow_extra_args(false);

@@ -24,7 +24,9 @@ void ProgressLine::update(const Simulation& sim) {
   if ((sim.steps() & 15) != 0 || quiet_) return;
   const auto now = std::chrono::steady_clock::now();
   const double since = std::chrono::duration<double>(now - last_).count();
-  if (since < (tty_ ? 0.5 : 30.0)) return;
+  const int tenths = end_ > 0.0 ? static_cast<int>(std::min(10.0, 10.0 * sim.time() / end_)) : 0;
+  if (tty_ ? since < 0.5 : (since < 60.0 && tenths <= tenths_printed_)) return;
+  tenths_printed_ = std::max(tenths_printed_, tenths);
   const double elapsed = std::chrono::duration<double>(now - start_).count();
   const double rate = (sim.steps() - steps_at_last_) / since;
   const double eta = elapsed * (end_ - sim.time()) / std::max(sim.time(), 1e-300);

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
-// The progress line of a run on standard output: rewritten in place on a terminal (every 0.5 s),
-// a new line every 30 s when the output goes to a file or pipe, nothing with --quiet.
+// The progress line of a run on standard output: rewritten in place on a terminal (every 0.5 s);
+// when the output goes to a file or pipe, a new line each time the run passes another tenth of
+// its end time or a minute after the last line, whichever comes first; nothing with --quiet.
 #include <chrono>
 #include <cstdint>
 
@@ -23,6 +24,7 @@ class ProgressLine {
   double end_;
   std::chrono::steady_clock::time_point start_, last_;
   std::int64_t steps_at_last_ = 0;
+  int tenths_printed_ = 0;  // piped: the tenths of the end time passed at the last line
 };
 
 }  // namespace femdem

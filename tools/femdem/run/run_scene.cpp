@@ -39,10 +39,7 @@
 #include "tools/femdem/run/run_checkpoint.hpp"
 #include "tools/femdem/run/run_log.hpp"
 #include "tools/femdem/run/run_summary.hpp"
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
+#include "tools/femdem/run/thread_count.hpp"
 
 namespace femdem {
 namespace {
@@ -74,18 +71,6 @@ class StopSignals {
   void (*old_int_)(int);
   void (*old_term_)(int);
 };
-
-// The thread count of the run (option, else the scene's; 0: every core), set for OpenMP.
-int use_threads(int option, int scene) {
-  int threads = option >= 0 ? option : scene;
-#ifdef _OPENMP
-  if (threads <= 0) threads = omp_get_num_procs();
-  omp_set_num_threads(threads);
-#else
-  threads = 1;
-#endif
-  return threads;
-}
 
 void write_log_header(RunLog& log, const SceneFile& scene, const RunOptions& options) {
   std::ostringstream head;
