@@ -36,6 +36,7 @@ from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "python"))
 import femdem  # noqa: E402  (tools/python/femdem)
+from femdem.plotting import legend_outside  # noqa: E402
 
 GRID = 0.05  # m, the point spacing of the volume count
 
@@ -240,7 +241,7 @@ def main():
     ax3.set_ylabel("distance from the slope plane (m)")
     ax3.set_title(f"interior patch {area:.1f} m$^2$: solid fraction {fraction:.3f}, "
                   f"N D$_n^2$/A = {n_over * dn * dn / area:.3f}", fontsize=9)
-    ax3.legend(fontsize=8)
+    legend_outside(ax3)
     ax4 = fig.add_subplot(2, 2, 4)
     h = femdem.read_history(out)
     ke = np.asarray(h["kinetic_energy"])
@@ -252,7 +253,7 @@ def main():
     ax4.set_ylim(max(ke.max() * 1e-6, 1e-30), ke.max() * 3)
     ax4.set_xlabel("time (s)")
     ax4.set_ylabel("J")
-    ax4.legend(fontsize=8)
+    legend_outside(ax4)
     ax4.set_title("kinetic energy", fontsize=9)
     fig.tight_layout()
     png = args.png or os.path.join(out, "armour_layer.png")

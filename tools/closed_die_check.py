@@ -24,6 +24,7 @@ import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "python"))
 import femdem  # noqa: E402  (tools/python/femdem)
+from femdem.plotting import legend_outside  # noqa: E402
 
 
 def analytic(strain, E, nu, sy, H):
@@ -111,7 +112,7 @@ def main():
         ax.set_ylabel("stress [MPa]")
         ax.set_title("Closed-die compression of a von Mises cube")
         ax.grid(alpha=0.3)
-        ax.legend()
+        legend_outside(ax)
         fig.tight_layout()
         fig.savefig(sys.argv[6], dpi=120)
         print("wrote " + sys.argv[6])

@@ -29,6 +29,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "python"))
 import femdem  # noqa: E402  (tools/python/femdem)
+from femdem.plotting import legend_outside  # noqa: E402
 
 # V-Cross proportions of scenes/meshes/v_cross.stl (span S, arm width a), used to find the arm
 # tips and the core corners.
@@ -157,10 +158,10 @@ def main():
     axs[0, 0].axhline(3.5, color="C1", ls="--", lw=0.8, label="thesis M-C 3.5 MPa")
     axs[0, 0].set_xlabel("t (ms)")
     axs[0, 0].set_ylabel("largest principal stress in the unit (MPa)")
-    axs[0, 0].legend(fontsize=8)
+    legend_outside(axs[0, 0])
     axs[0, 1].set_xlabel("t (ms)")
     axs[0, 1].set_ylabel("arm deflection, tip - core corner (mm)")
-    axs[0, 1].legend(fontsize=8)
+    legend_outside(axs[0, 1])
     re_ = res["elastic"]
     project(axs[1, 0], re_["cent"], re_["s1"][re_["frame_peak"]] / 1e6,
             f"elastic, largest principal stress at t = {re_['frame_peak_time'] * 1e3:.2f} ms",

@@ -17,6 +17,7 @@ import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "python"))
 import femdem  # noqa: E402  (tools/python/femdem)
+from femdem.plotting import legend_outside  # noqa: E402
 import matplotlib
 
 matplotlib.use("Agg")
@@ -85,12 +86,12 @@ def compare(dirs, png, labels):
     ax1.set_ylabel("relative density D")
     ax1.set_title("Compaction curves (loading)")
     ax1.grid(alpha=0.3)
-    ax1.legend()
+    legend_outside(ax1)
     ax2.set_xlabel("mean punch pressure P [MPa]")
     ax2.set_ylabel("ln(1 / (1 − D))")
     ax2.set_title("Heckel plots (loading)")
     ax2.grid(alpha=0.3)
-    ax2.legend()
+    legend_outside(ax2)
     fig.tight_layout()
     fig.savefig(png, dpi=120)
     print(f"wrote {png}")
@@ -153,7 +154,7 @@ def main():
     ax.set_ylabel("force [N]")
     ax.set_title("Force against punch displacement")
     ax.grid(alpha=0.3)
-    ax.legend()
+    legend_outside(ax)
     fig.tight_layout()
     fig.savefig(os.path.join(out, "force_displacement.png"), dpi=120)
     written.append("force_displacement.png")
@@ -180,7 +181,7 @@ def main():
     ax.set_ylabel("ln(1 / (1 − D))")
     ax.set_title("Heckel plot")
     ax.grid(alpha=0.3)
-    ax.legend()
+    legend_outside(ax)
     fig.tight_layout()
     fig.savefig(os.path.join(out, "heckel.png"), dpi=120)
     written.append("heckel.png")

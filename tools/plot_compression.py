@@ -38,6 +38,7 @@ import tomllib
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "python"))
 import femdem  # noqa: E402  (tools/python/femdem)
+from femdem.plotting import legend_outside  # noqa: E402
 import matplotlib
 import numpy as np
 
@@ -184,7 +185,7 @@ def plot_curve(figs, strain, stress, sigma_th, formula, peak, i_peak, res):
         ax.grid(alpha=0.3)
         ax.set_title("first 0.12 % (thesis fig. 4.28)" if zoom else "whole run", fontsize=9)
         if zoom:
-            ax.legend(fontsize=8, loc="lower right")
+            legend_outside(ax)
     fr = res["wall_friction"]
     fig.suptitle(f"Unconfined compression, {res['model']} ({formula}), wall friction {fr[0]:g}",
                  fontsize=10)
@@ -234,7 +235,7 @@ def plot_band(figs, X, conn, u, eqps, n, c, angle_th, res, R):
     ax.set_ylim(1e3 * z.min() - 2, 1e3 * z.max() + 2)
     ax.set_xlabel("distance from the axis in the cut [mm]")
     ax.set_ylabel("height [mm]")
-    ax.legend(fontsize=8, loc="upper right")
+    legend_outside(ax)
     ax.set_title(f"cut through the axis, t = {1e3 * res['frame_time']:.2f} ms, strain "
                  f"{100 * res['frame_strain']:.2f} %", fontsize=9)
     fig.tight_layout()

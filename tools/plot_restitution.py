@@ -31,6 +31,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "python"))
 import femdem  # noqa: E402  (tools/python/femdem)
+from femdem.plotting import legend_outside  # noqa: E402
 
 REFERENCE_CSV = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenes",
                              "ball_on_concrete_reference.csv")
@@ -138,7 +139,7 @@ def main():
     ax.set_ylabel("coefficient of restitution (ball's centre of mass)")
     ax.set_title("Steel ball on a concrete prism (thesis ch. 5)")
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0))
+    legend_outside(ax)
     fig.tight_layout()
     out = args.out or os.path.join(os.path.dirname(os.path.abspath(args.csv)), "restitution.png")
     fig.savefig(out, dpi=130)

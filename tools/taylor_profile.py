@@ -19,6 +19,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "python"))
 import femdem  # noqa: E402  (tools/python/femdem)
+from femdem.plotting import legend_outside  # noqa: E402
 
 
 def main():
@@ -58,7 +59,7 @@ def main():
     ax.set_ylabel("height [mm]")
     ax.set_title(f"Taylor bar: L = {result['length_mm']:.2f} mm (21.48), "
                  f"R = {result['mean_base_radius_mm']:.2f} mm (7.12)", fontsize=9)
-    ax.legend()
+    legend_outside(ax)
     fig.tight_layout()
     fig.savefig(os.path.join(out, "taylor_profile.png"), dpi=120)
     plt.close(fig)
@@ -69,12 +70,12 @@ def main():
     axes[0].axhline(21.48, color="k", ls="--", lw=0.8, label="thesis 21.48 mm")
     axes[0].set_xlabel("time [us]")
     axes[0].set_ylabel("length [mm]")
-    axes[0].legend()
+    legend_outside(axes[0])
     axes[1].plot(t_us, 1e3 * np.array(radii), label="mean base radius")
     axes[1].axhline(7.12, color="k", ls="--", lw=0.8, label="thesis 7.12 mm")
     axes[1].set_xlabel("time [us]")
     axes[1].set_ylabel("radius [mm]")
-    axes[1].legend()
+    legend_outside(axes[1])
     fig.tight_layout()
     fig.savefig(os.path.join(out, "taylor_history.png"), dpi=120)
     plt.close(fig)

@@ -26,6 +26,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "python"))
 import femdem  # noqa: E402  (tools/python/femdem)
+from femdem.plotting import legend_outside  # noqa: E402
 
 
 def thornton(v, vy):
@@ -87,7 +88,7 @@ def main():
     ax.set_xlabel("impact speed [m/s]")
     ax.set_ylabel("coefficient of restitution (centre of mass)")
     ax.set_ylim(0.0, 1.05)
-    ax.legend(fontsize=8)
+    legend_outside(ax)
     fig.tight_layout()
     out = args.out or os.path.join(os.path.dirname(os.path.abspath(args.csv)), "thornton_fit.png")
     fig.savefig(out, dpi=120)
