@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -125,6 +126,48 @@ class Reader {
       fail("expected " + std::string(keyword) + ", got '" + std::string(trimmed()) + "'");
   }
 
+  // Binary data (binary MSH files): the next sizeof(T) bytes as a T, in the machine's byte order
+  // (read_gmsh checks the file's against it). Line numbers count the text lines read so far;
+  // a problem in binary data names the byte offset too.
+  template <class T>
+  T binary(const char* what) {
+    if (data_.size() - std::min(pos_, data_.size()) < sizeof(T))
+      fail_binary(std::string("unexpected end of file in binary data: expected ") + what +
+                  " (truncated file?)");
+    T v;
+    std::memcpy(&v, data_.data() + pos_, sizeof(T));
+    pos_ += sizeof(T);
+    return v;
+  }
+  // A size_t of binary data (MSH 4.1 counts and tags) as a non-negative int64.
+  std::int64_t binary_size(const char* what) {
+    const auto v = binary<std::uint64_t>(what);
+    if (v > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
+      fail_binary(std::string(what) + " is out of range");
+    return static_cast<std::int64_t>(v);
+  }
+  // An int of binary data that must not be negative (MSH 2 counts).
+  std::int64_t binary_count(const char* what) {
+    const auto v = binary<std::int32_t>(what);
+    if (v < 0) fail_binary(std::string(what) + " must not be negative");
+    return v;
+  }
+  double binary_real(const char* what) {
+    const double v = binary<double>(what);
+    if (!std::isfinite(v)) fail_binary(std::string("expected a finite number ") + what);
+    return v;
+  }
+  // The end of a section's binary data: the line break before its end marker.
+  void end_binary(const char* section) {
+    if (pos_ >= data_.size() || data_[pos_] != '\n')
+      fail_binary(std::string("the binary data of ") + section +
+                  " does not end where its counts say (a line break was expected)");
+    ++pos_;
+  }
+  [[noreturn]] void fail_binary(const std::string& msg) const {
+    throw InputError(msg + " (binary data, byte " + std::to_string(pos_) + ")", path_, line_no_);
+  }
+
   [[noreturn]] void fail(const std::string& msg, int column = 0) const {
     throw InputError(msg, path_, line_no_, column);
   }
@@ -145,6 +188,25 @@ class Reader {
   std::size_t tok_ = 0;
   int col_ = 0;
 };
+
+// The number of nodes of a gmsh element type, 0 when unknown: binary element data can only be
+// stepped over when it is known. Types 1-31 and the few higher-order ones gmsh writes by
+// default for orders up to 4 (gmsh's GmshDefines.h lists them).
+int element_type_nodes(std::int64_t type) {
+  static constexpr std::array<int, 32> kNodes = {0,  2,  3,  4,  4, 8, 6,  5,  3,  6, 9,
+                                                 10, 27, 18, 14, 1, 8, 20, 15, 13, 9, 10,
+                                                 12, 15, 15, 21, 4, 5, 6,  20, 35, 56};
+  if (type >= 0 && type < static_cast<std::int64_t>(kNodes.size()))
+    return kNodes[static_cast<std::size_t>(type)];
+  switch (type) {
+    case 92:
+      return 64;  // hexahedron of order 3
+    case 93:
+      return 125;  // hexahedron of order 4
+    default:
+      return 0;
+  }
+}
 
 struct RawElement {
   std::int64_t tag;
@@ -299,6 +361,144 @@ void read_elements_v41(Reader& r, RawMesh& m) {
   if (seen != total && r.trimmed() == "$EndElements")
     r.fail("$Elements announced " + std::to_string(total) + " elements but its blocks hold " +
            std::to_string(seen));
+  r.expect_exact("$EndElements");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Binary MSH (file type 1, data size 8): the section headers, the counts of MSH 2 sections and
+// $PhysicalNames are text; nodes and elements are packed ints, size_ts and doubles.
+
+void read_nodes_v2_binary(Reader& r, RawMesh& m) {
+  r.require_line("the number of nodes");
+  const std::int64_t n = r.count("number of nodes");
+  r.expect_end_of_line();
+  for (std::int64_t i = 0; i < n; ++i) {
+    const std::int64_t tag = r.binary<std::int32_t>("node tag");
+    Vec3 x;
+    x[0] = r.binary_real("x");
+    x[1] = r.binary_real("y");
+    x[2] = r.binary_real("z");
+    m.node_tags.push_back(tag);
+    m.coords.push_back(x);
+  }
+  r.end_binary("$Nodes");
+  r.require_line("$EndNodes");
+  r.expect_exact("$EndNodes");
+}
+
+void read_nodes_v41_binary(Reader& r, RawMesh& m) {
+  const std::int64_t blocks = r.binary_size("number of entity blocks");
+  const std::int64_t total = r.binary_size("number of nodes");
+  r.binary_size("minimum node tag");
+  r.binary_size("maximum node tag");
+  std::int64_t seen = 0;
+  for (std::int64_t b = 0; b < blocks; ++b) {
+    const std::int64_t dim = r.binary<std::int32_t>("entity dimension");
+    r.binary<std::int32_t>("entity tag");
+    const std::int64_t parametric = r.binary<std::int32_t>("parametric flag");
+    const std::int64_t n = r.binary_size("number of nodes in the block");
+    if (dim < 0 || dim > 3) r.fail_binary("entity dimension must be 0..3");
+    if (n > total - seen)
+      r.fail_binary("node blocks hold more than the " + std::to_string(total) + " nodes announced");
+    for (std::int64_t i = 0; i < n; ++i) m.node_tags.push_back(r.binary_size("node tag"));
+    for (std::int64_t i = 0; i < n; ++i) {
+      Vec3 x;
+      x[0] = r.binary_real("x");
+      x[1] = r.binary_real("y");
+      x[2] = r.binary_real("z");
+      if (parametric) {
+        for (std::int64_t k = 0; k < dim; ++k) r.binary<double>("parametric coordinate");
+      }
+      m.coords.push_back(x);
+    }
+    seen += n;
+  }
+  if (seen != total)
+    r.fail_binary("$Nodes announced " + std::to_string(total) + " nodes but its blocks hold " +
+                  std::to_string(seen));
+  r.end_binary("$Nodes");
+  r.require_line("$EndNodes");
+  r.expect_exact("$EndNodes");
+}
+
+// One element's node tags (binary) into e, for a tetrahedron; others are stepped over.
+template <class Tag>
+void read_binary_element(Reader& r, RawMesh& m, std::int64_t type, std::int64_t tag, int line) {
+  const int nodes = element_type_nodes(type);
+  if (type != kTypeTet4 && type != kTypeTet10) {
+    for (int k = 0; k < nodes; ++k) r.binary<Tag>("node tag");
+    ++m.ignored;
+    return;
+  }
+  RawElement e{};
+  e.tag = tag;
+  e.line = line;
+  e.nodes = nodes;
+  for (int k = 0; k < nodes; ++k) e.n[static_cast<std::size_t>(k)] = r.binary<Tag>("node tag");
+  m.tets.push_back(e);
+}
+
+void check_element_type(Reader& r, std::int64_t type) {
+  if (element_type_nodes(type) == 0)
+    r.fail_binary("element type " + std::to_string(type) +
+                  " has a node count this reader does not know, so binary data past it cannot "
+                  "be read; save the mesh as ASCII (gmsh option Mesh.Binary = 0)");
+}
+
+void read_elements_v2_binary(Reader& r, RawMesh& m) {
+  r.require_line("the number of elements");
+  const std::int64_t n = r.count("number of elements");
+  r.expect_end_of_line();
+  const int line = r.line_no();
+  std::int64_t seen = 0;
+  while (seen < n) {
+    const std::int64_t type = r.binary<std::int32_t>("element type");
+    const std::int64_t follow = r.binary_count("number of elements that follow");
+    const std::int64_t ntags = r.binary_count("number of tags");
+    check_element_type(r, type);
+    if (follow > n - seen)
+      r.fail_binary("element blocks hold more than the " + std::to_string(n) +
+                    " elements announced");
+    if (follow == 0) r.fail_binary("an element block of no elements");
+    for (std::int64_t i = 0; i < follow; ++i) {
+      const std::int64_t tag = r.binary<std::int32_t>("element tag");
+      for (std::int64_t k = 0; k < ntags; ++k) r.binary<std::int32_t>("element tag (physical)");
+      read_binary_element<std::int32_t>(r, m, type, tag, line);
+    }
+    seen += follow;
+  }
+  r.end_binary("$Elements");
+  r.require_line("$EndElements");
+  r.expect_exact("$EndElements");
+}
+
+void read_elements_v41_binary(Reader& r, RawMesh& m) {
+  const int line = r.line_no();
+  const std::int64_t blocks = r.binary_size("number of entity blocks");
+  const std::int64_t total = r.binary_size("number of elements");
+  r.binary_size("minimum element tag");
+  r.binary_size("maximum element tag");
+  std::int64_t seen = 0;
+  for (std::int64_t b = 0; b < blocks; ++b) {
+    r.binary<std::int32_t>("entity dimension");
+    r.binary<std::int32_t>("entity tag");
+    const std::int64_t type = r.binary<std::int32_t>("element type");
+    const std::int64_t n = r.binary_size("number of elements in the block");
+    check_element_type(r, type);
+    if (n > total - seen)
+      r.fail_binary("element blocks hold more than the " + std::to_string(total) +
+                    " elements announced");
+    for (std::int64_t i = 0; i < n; ++i) {
+      const std::int64_t tag = r.binary_size("element tag");
+      read_binary_element<std::uint64_t>(r, m, type, tag, line);
+    }
+    seen += n;
+  }
+  if (seen != total)
+    r.fail_binary("$Elements announced " + std::to_string(total) +
+                  " elements but its blocks hold " + std::to_string(seen));
+  r.end_binary("$Elements");
+  r.require_line("$EndElements");
   r.expect_exact("$EndElements");
 }
 
@@ -461,17 +661,25 @@ Tet10Mesh read_gmsh(const std::string& path, GmshReadInfo* info_out) {
   } else if (vs == "2" || vs == "2.0" || vs == "2.1" || vs == "2.2") {
     major = 2;
   } else {
-    r.fail("unsupported MSH version '" + vs + "'; save the mesh as MSH 4.1 or 2.2 ASCII", 1);
+    r.fail("unsupported MSH version '" + vs + "'; save the mesh as MSH 4.1 or 2.2", 1);
   }
   info.version = vs;
   const std::int64_t file_type = r.integer("file type");
-  if (file_type != 0)
-    r.fail(
-        "binary MSH files are not supported; save the mesh as ASCII (gmsh option "
-        "Mesh.Binary = 0)");
+  if (file_type != 0 && file_type != 1) r.fail("file type must be 0 (ASCII) or 1 (binary)");
+  const bool binary = file_type == 1;
   const std::int64_t data_size = r.integer("data size");
-  (void)data_size;
   r.expect_end_of_line();
+  if (binary) {
+    if (data_size != 8)
+      r.fail("binary MSH with data size " + std::to_string(data_size) +
+             "; only 8-byte size_t (what gmsh writes on 64-bit machines) is read");
+    // the int 1 that says the byte order, then a line break
+    if (r.binary<std::int32_t>("the byte-order mark (the int 1)") != 1)
+      r.fail_binary(
+          "the byte-order mark is not 1: the file was written on a machine of the "
+          "other byte order");
+    r.end_binary("$MeshFormat");
+  }
   r.require_line("$EndMeshFormat");
   r.expect_exact("$EndMeshFormat");
 
@@ -485,18 +693,18 @@ Tet10Mesh read_gmsh(const std::string& path, GmshReadInfo* info_out) {
       raw.have_nodes = true;
       raw.nodes_line = r.line_no();
       if (major == 4)
-        read_nodes_v41(r, raw);
+        binary ? read_nodes_v41_binary(r, raw) : read_nodes_v41(r, raw);
       else
-        read_nodes_v2(r, raw);
+        binary ? read_nodes_v2_binary(r, raw) : read_nodes_v2(r, raw);
     } else if (head == "$Elements") {
       if (raw.have_elements) r.fail("second $Elements section");
       if (!raw.have_nodes) r.fail("$Elements before $Nodes");
       raw.have_elements = true;
       raw.elements_line = r.line_no();
       if (major == 4)
-        read_elements_v41(r, raw);
+        binary ? read_elements_v41_binary(r, raw) : read_elements_v41(r, raw);
       else
-        read_elements_v2(r, raw);
+        binary ? read_elements_v2_binary(r, raw) : read_elements_v2(r, raw);
     } else {
       // Skip any other section up to its end marker.
       const std::string name(head.substr(1));

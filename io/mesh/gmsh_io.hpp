@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
-// gmsh MSH files (ASCII, format 4.1 and 2.x) <-> Tet10Mesh.
+// gmsh MSH files (format 4.1 and 2.x, ASCII or binary) <-> Tet10Mesh.
 //
 // Reading:
 //  - Only tetrahedra are kept: type 4 (TET4, promoted to TET10 by adding one node at the
@@ -13,8 +13,10 @@
 //    only some are, or an element is degenerate (|corner volume| <= 1e-10 of the mean) or its
 //    quadratic map folds (scaled Jacobian <= 0), InputError names the element's gmsh tag.
 //  - Every problem throws InputError with the file and the 1-based line (and column where it
-//    helps): binary files, unsupported versions (MSH 4.0, 3.x), truncated files, malformed or
-//    non-numeric data, dangling node references, no tetrahedra at all.
+//    helps; in binary data the byte offset): unsupported versions (MSH 4.0, 3.x), binary files
+//    of the other byte order or of a data size other than 8, element types of unknown node
+//    count in binary data, truncated files, malformed or non-numeric data, dangling node
+//    references, no tetrahedra at all.
 // Writing: MSH 4.1 ASCII, one volume entity, TET10 elements (type 11), node tags 1..N in mesh
 // order, element tags 1..E, coordinates in shortest round-trip form, so write + read gives the
 // same mesh bit for bit.

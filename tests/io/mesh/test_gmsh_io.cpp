@@ -2,8 +2,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -359,4 +361,104 @@ TEST(GmshIo, V41ParametricNodesAndUnorderedTags) {
   EXPECT_EQ(m.nodes.size(), 10u);
   EXPECT_NEAR(tet10_volume(m, 0), 1.0 / 6, 1e-15);
   expect_straight_midpoints(m);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Binary MSH, against the ASCII file gmsh wrote of the same mesh (tests/data/gmsh/two_blocks.geo
+// gives the commands): two unit cubes, 201 TET10 in all.
+
+namespace {
+
+std::string gmsh_data(const std::string& name) {
+  return data_path("gmsh/" + name);
+}
+
+void expect_same_mesh(const Tet10Mesh& a, const Tet10Mesh& b) {
+  ASSERT_EQ(a.nodes.size(), b.nodes.size());
+  ASSERT_EQ(a.elements.size(), b.elements.size());
+  for (std::size_t i = 0; i < a.nodes.size(); ++i)
+    // gmsh prints 16 significant digits in ASCII: the binary doubles agree to that
+    EXPECT_LT((a.nodes[i] - b.nodes[i]).norm(), 1e-15 * (1.0 + a.nodes[i].norm())) << i;
+  for (std::size_t e = 0; e < a.elements.size(); ++e) EXPECT_EQ(a.elements[e], b.elements[e]) << e;
+}
+
+}  // namespace
+
+TEST(GmshIo, BinaryFilesReadAsTheirAsciiTwins) {
+  for (const char* version : {"41", "22"}) {
+    SCOPED_TRACE(version);
+    GmshReadInfo ascii_info, binary_info;
+    const Tet10Mesh ascii =
+        read_gmsh(gmsh_data(std::string("two_blocks_ascii") + version + ".msh"), &ascii_info);
+    const Tet10Mesh binary =
+        read_gmsh(gmsh_data(std::string("two_blocks_bin") + version + ".msh"), &binary_info);
+    // counted in the ASCII files: 101 + 100 type-11 elements, 28 six-node triangles of the two
+    // physical surfaces and one point
+    EXPECT_EQ(binary_info.tet10, 201);
+    EXPECT_EQ(binary_info.tet4, 0);
+    EXPECT_EQ(binary_info.ignored_elements, ascii_info.ignored_elements);
+    expect_same_mesh(ascii, binary);
+    EXPECT_NEAR(total_volume(binary), 2.0, 1e-12);  // two unit cubes
+  }
+}
+
+TEST(GmshIo, BinaryTet4FilesArePromoted) {
+  for (const char* name : {"two_blocks_tet4_bin41.msh", "two_blocks_tet4_bin22.msh"}) {
+    SCOPED_TRACE(name);
+    GmshReadInfo info;
+    const Tet10Mesh m = read_gmsh(gmsh_data(name), &info);
+    EXPECT_GT(info.tet4, 0);
+    EXPECT_EQ(info.tet10, 0);
+    EXPECT_NEAR(total_volume(m), 2.0, 1e-12);
+    expect_straight_midpoints(m);
+  }
+}
+
+TEST(GmshIo, TruncatedOrCorruptBinaryFilesNameTheByte) {
+  const std::string whole = [] {
+    std::ifstream in(gmsh_data("two_blocks_bin41.msh"), std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  }();
+  const auto write_bytes = [](const std::string& name, const std::string& bytes) {
+    const std::string p = tmp_path(name);
+    std::ofstream(p, std::ios::binary) << bytes;
+    return p;
+  };
+  const std::size_t nodes = whole.find("$Nodes\n") + 7;
+  ASSERT_NE(nodes, std::string::npos + 7);
+  // cut in the middle of the node coordinates
+  const std::string cut = write_bytes("bin_cut.msh", whole.substr(0, nodes + 600));
+  try {
+    read_gmsh(cut);
+    FAIL() << "no InputError for a truncated binary file";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("unexpected end of file in binary data"),
+              std::string::npos)
+        << e.describe();
+    EXPECT_NE(std::string(e.what()).find("byte "), std::string::npos) << e.describe();
+  }
+  // the number of nodes of the $Nodes header (second size_t) one too large: the blocks end
+  // before it, where their counts say
+  std::string more = whole;
+  std::uint64_t total = 0;
+  std::memcpy(&total, more.data() + nodes + 8, 8);
+  ++total;
+  std::memcpy(more.data() + nodes + 8, &total, 8);
+  try {
+    read_gmsh(write_bytes("bin_count.msh", more));
+    FAIL() << "no InputError for a wrong node count";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("nodes but its blocks hold"), std::string::npos)
+        << e.describe();
+  }
+  // the byte-order mark of another machine
+  std::string swapped = whole;
+  const std::size_t mark = swapped.find("4.1 1 8\n") + 8;
+  std::swap(swapped[mark], swapped[mark + 3]);
+  try {
+    read_gmsh(write_bytes("bin_order.msh", swapped));
+    FAIL() << "no InputError for the other byte order";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("other byte order"), std::string::npos) << e.describe();
+  }
 }
