@@ -64,6 +64,8 @@ bool in_region(const RegionSpec& r, const Vec3& p, double tol) {
              (p.array() <= r.box_max.array() + tol).all();
     case RegionSpec::Kind::Plane:
       return std::fabs((p - r.plane_point).dot(r.plane_normal.normalized())) <= tol;
+    case RegionSpec::Kind::Nodes:
+      return false;  // selected by index (apply_constraint)
   }
   return false;
 }
@@ -278,9 +280,23 @@ void apply_constraint(Model& m, const ConstraintSpec& c) {
   }
   const double tol = c.region.tolerance > 0.0 ? c.region.tolerance : 1e-6 * (hi - lo).norm();
   int selected = 0;
+  std::vector<char> in_set;
+  if (c.region.kind == RegionSpec::Kind::Nodes) {
+    in_set.assign(static_cast<std::size_t>(body.node_count), 0);
+    for (std::int32_t i : c.region.nodes)
+      if (i < 0 || i >= body.node_count)
+        throw InputError("node set '" + c.region.node_set + "' refers to node " +
+                             std::to_string(i) + ", beyond the " + std::to_string(body.node_count) +
+                             " of body '" + body.name + "'",
+                         {}, 0, 0, "constraints");
+      else
+        in_set[static_cast<std::size_t>(i)] = 1;
+  }
   for (std::int32_t n = body.first_node; n < body.first_node + body.node_count; ++n) {
     const Vec3 p(m.X[3 * n], m.X[3 * n + 1], m.X[3 * n + 2]);
-    if (!in_region(c.region, p, tol)) continue;
+    if (in_set.empty() ? !in_region(c.region, p, tol)
+                       : !in_set[static_cast<std::size_t>(n - body.first_node)])
+      continue;
     ++selected;
     for (int k = 0; k < 3; ++k) {
       if (c.velocity) {

@@ -129,11 +129,14 @@ struct WallSpec {
 };
 
 // Region of a body's reference configuration whose nodes a constraint acts on.
+// Nodes: a node set named in the body's mesh file (a gmsh physical point, curve or surface).
 struct RegionSpec {
-  enum class Kind { All, Box, Plane } kind = Kind::All;
+  enum class Kind { All, Box, Plane, Nodes } kind = Kind::All;
   Vec3 box_min = Vec3::Zero(), box_max = Vec3::Zero();
   Vec3 plane_point = Vec3::Zero(), plane_normal = Vec3(0, 0, 1);
-  double tolerance = 0.0;  // 0: 1e-6 of the body's bounding-box diagonal
+  double tolerance = 0.0;           // 0: 1e-6 of the body's bounding-box diagonal
+  std::string node_set;             // Nodes: its name
+  std::vector<std::int32_t> nodes;  // Nodes: the body's node indices (0 = its first node)
 };
 
 struct ConstraintSpec {

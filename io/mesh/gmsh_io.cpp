@@ -8,6 +8,7 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
@@ -208,11 +209,74 @@ int element_type_nodes(std::int64_t type) {
   }
 }
 
+// The dimension of a gmsh element type's shape (0 point, 1 line, 2 surface, 3 volume).
+int element_type_dim(std::int64_t type) {
+  switch (type) {
+    case 15:
+      return 0;
+    case 1:
+    case 8:
+    case 26:
+    case 27:
+    case 28:
+      return 1;
+    case 2:
+    case 3:
+    case 9:
+    case 10:
+    case 16:
+    case 20:
+    case 21:
+    case 22:
+    case 23:
+    case 24:
+    case 25:
+      return 2;
+    default:
+      return 3;
+  }
+}
+
 struct RawElement {
   std::int64_t tag;
   int line;
   int nodes;                       // 4 or 10
   std::array<std::int64_t, 10> n;  // node TAGS, gmsh order
+  std::int64_t group_key = 0;      // MSH 4.1: its volume entity's tag; MSH 2: its physical tag
+};
+
+using DimTag = std::pair<int, std::int64_t>;
+
+// Physical groups as the file gives them, resolved to mesh nodes and elements in assemble().
+struct RawGroups {
+  std::map<DimTag, std::vector<std::int64_t>> entity_physicals;  // MSH 4.1 $Entities
+  std::map<DimTag, std::string> names;                           // $PhysicalNames
+  // per (dim < 3, physical tag): the node tags of its elements, and the corner pairs of its
+  // linear lines, triangles and quadrangles (whose mid-edge nodes a TET4 promotion adds)
+  std::map<DimTag, std::vector<std::int64_t>> node_tags;
+  std::map<DimTag, std::vector<std::array<std::int64_t, 2>>> edges;
+
+  // The physical tags of an element: its entity's (MSH 4.1) or its own (MSH 2, 0 = none).
+  std::vector<std::int64_t> physicals(bool v2, int dim, std::int64_t key) const {
+    if (v2) return key != 0 ? std::vector<std::int64_t>{key} : std::vector<std::int64_t>{};
+    const auto it = entity_physicals.find({dim, key});
+    return it == entity_physicals.end() ? std::vector<std::int64_t>{} : it->second;
+  }
+  // Records a lower-dimensional element of the groups `phys` (node tags in gmsh order).
+  void add_element(int dim, std::int64_t type, const std::vector<std::int64_t>& phys,
+                   const std::int64_t* tags, int count) {
+    static constexpr int kLine[2][2] = {{0, 1}, {1, 0}};
+    static constexpr int kTri[3][2] = {{0, 1}, {1, 2}, {2, 0}};
+    static constexpr int kQuad[4][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}};
+    for (std::int64_t p : phys) {
+      auto& nodes = node_tags[{dim, p}];
+      nodes.insert(nodes.end(), tags, tags + count);
+      auto& e = edges[{dim, p}];
+      const int(*pairs)[2] = type == 1 ? kLine : type == 2 ? kTri : type == 3 ? kQuad : nullptr;
+      const int n = type == 1 ? 1 : type == 2 ? 3 : type == 3 ? 4 : 0;
+      for (int i = 0; i < n; ++i) e.push_back({tags[pairs[i][0]], tags[pairs[i][1]]});
+    }
+  }
 };
 
 struct RawMesh {
@@ -224,6 +288,8 @@ struct RawMesh {
   int elements_line = 0;  // line of $Elements
   bool have_elements = false;
   std::int64_t ignored = 0;
+  bool v2 = false;
+  RawGroups groups;
 };
 
 // Reads the node list of a tetrahedron from the current line into e.
@@ -313,11 +379,25 @@ void read_elements_v2(Reader& r, RawMesh& m) {
     e.line = r.line_no();
     const std::int64_t type = r.integer("element type");
     const std::int64_t ntags = r.count("number of tags");
-    if (type != kTypeTet4 && type != kTypeTet10) {
+    const int dim = element_type_dim(type);
+    if (type != kTypeTet4 && type != kTypeTet10 && dim == 3) {
       ++m.ignored;
       continue;
     }
-    for (std::int64_t k = 0; k < ntags; ++k) r.integer("element tag (physical/elementary)");
+    for (std::int64_t k = 0; k < ntags; ++k) {
+      const std::int64_t t = r.integer("element tag (physical/elementary)");
+      if (k == 0) e.group_key = t;  // the physical tag (0: none)
+    }
+    if (dim < 3) {
+      ++m.ignored;
+      const int nodes = element_type_nodes(type);
+      if (e.group_key == 0 || nodes == 0) continue;
+      std::vector<std::int64_t> tags(static_cast<std::size_t>(nodes));
+      for (auto& t : tags) t = r.integer("node tag");
+      r.expect_end_of_line();
+      m.groups.add_element(dim, type, {e.group_key}, tags.data(), nodes);
+      continue;
+    }
     read_tet_nodes(r, static_cast<int>(type), e);
     m.tets.push_back(e);
   }
@@ -335,26 +415,40 @@ void read_elements_v41(Reader& r, RawMesh& m) {
   std::int64_t seen = 0;
   for (std::int64_t b = 0; b < blocks; ++b) {
     r.require_line("an element block header");
-    r.integer("entity dimension");
-    r.integer("entity tag");
+    const std::int64_t dim = r.integer("entity dimension");
+    const std::int64_t entity = r.integer("entity tag");
     const std::int64_t type = r.integer("element type");
     const std::int64_t n = r.count("number of elements in the block");
     r.expect_end_of_line();
     if (seen + n > total)
       r.fail("element blocks hold more than the " + std::to_string(total) + " elements announced");
     const bool tet = type == kTypeTet4 || type == kTypeTet10;
+    const int type_dim = element_type_dim(type);
+    const int nodes = element_type_nodes(type);
+    // a point, line or surface element of a physical group: its nodes form a node set
+    const std::vector<std::int64_t> phys = !tet && type_dim < 3 && nodes > 0
+                                               ? m.groups.physicals(false, type_dim, entity)
+                                               : std::vector<std::int64_t>{};
+    std::vector<std::int64_t> tags(static_cast<std::size_t>(nodes));
     for (std::int64_t i = 0; i < n; ++i) {
       r.require_line("element " + std::to_string(i + 1) + " of a block of " + std::to_string(n));
       if (!tet) {
         ++m.ignored;
+        if (phys.empty()) continue;
+        r.integer("element tag");
+        for (auto& t : tags) t = r.integer("node tag");
+        r.expect_end_of_line();
+        m.groups.add_element(type_dim, type, phys, tags.data(), nodes);
         continue;
       }
       RawElement e{};
       e.tag = r.integer("element tag");
       e.line = r.line_no();
+      e.group_key = entity;
       read_tet_nodes(r, static_cast<int>(type), e);
       m.tets.push_back(e);
     }
+    (void)dim;
     seen += n;
   }
   r.require_line("$EndElements");
@@ -423,16 +517,27 @@ void read_nodes_v41_binary(Reader& r, RawMesh& m) {
 
 // One element's node tags (binary) into e, for a tetrahedron; others are stepped over.
 template <class Tag>
-void read_binary_element(Reader& r, RawMesh& m, std::int64_t type, std::int64_t tag, int line) {
+void read_binary_element(Reader& r, RawMesh& m, std::int64_t type, std::int64_t tag, int line,
+                         std::int64_t group_key) {
   const int nodes = element_type_nodes(type);
   if (type != kTypeTet4 && type != kTypeTet10) {
-    for (int k = 0; k < nodes; ++k) r.binary<Tag>("node tag");
+    std::array<std::int64_t, 128> tags{};
+    for (int k = 0; k < nodes; ++k) {
+      const auto t = static_cast<std::int64_t>(r.binary<Tag>("node tag"));
+      if (k < static_cast<int>(tags.size())) tags[static_cast<std::size_t>(k)] = t;
+    }
     ++m.ignored;
+    const int dim = element_type_dim(type);
+    if (dim < 3 && nodes <= static_cast<int>(tags.size())) {
+      const auto phys = m.groups.physicals(m.v2, dim, group_key);
+      if (!phys.empty()) m.groups.add_element(dim, type, phys, tags.data(), nodes);
+    }
     return;
   }
   RawElement e{};
   e.tag = tag;
   e.line = line;
+  e.group_key = group_key;
   e.nodes = nodes;
   for (int k = 0; k < nodes; ++k) e.n[static_cast<std::size_t>(k)] = r.binary<Tag>("node tag");
   m.tets.push_back(e);
@@ -462,8 +567,12 @@ void read_elements_v2_binary(Reader& r, RawMesh& m) {
     if (follow == 0) r.fail_binary("an element block of no elements");
     for (std::int64_t i = 0; i < follow; ++i) {
       const std::int64_t tag = r.binary<std::int32_t>("element tag");
-      for (std::int64_t k = 0; k < ntags; ++k) r.binary<std::int32_t>("element tag (physical)");
-      read_binary_element<std::int32_t>(r, m, type, tag, line);
+      std::int64_t physical = 0;
+      for (std::int64_t k = 0; k < ntags; ++k) {
+        const std::int64_t t = r.binary<std::int32_t>("element tag (physical)");
+        if (k == 0) physical = t;
+      }
+      read_binary_element<std::int32_t>(r, m, type, tag, line, physical);
     }
     seen += follow;
   }
@@ -481,7 +590,7 @@ void read_elements_v41_binary(Reader& r, RawMesh& m) {
   std::int64_t seen = 0;
   for (std::int64_t b = 0; b < blocks; ++b) {
     r.binary<std::int32_t>("entity dimension");
-    r.binary<std::int32_t>("entity tag");
+    const std::int64_t entity = r.binary<std::int32_t>("entity tag");
     const std::int64_t type = r.binary<std::int32_t>("element type");
     const std::int64_t n = r.binary_size("number of elements in the block");
     check_element_type(r, type);
@@ -490,7 +599,7 @@ void read_elements_v41_binary(Reader& r, RawMesh& m) {
                     " elements announced");
     for (std::int64_t i = 0; i < n; ++i) {
       const std::int64_t tag = r.binary_size("element tag");
-      read_binary_element<std::uint64_t>(r, m, type, tag, line);
+      read_binary_element<std::uint64_t>(r, m, type, tag, line, entity);
     }
     seen += n;
   }
@@ -500,6 +609,126 @@ void read_elements_v41_binary(Reader& r, RawMesh& m) {
   r.end_binary("$Elements");
   r.require_line("$EndElements");
   r.expect_exact("$EndElements");
+}
+
+// $PhysicalNames (text in ASCII and binary files alike): "dim tag \"name\"" per line.
+void read_physical_names(Reader& r, RawGroups& g) {
+  r.require_line("the number of physical names");
+  const std::int64_t n = r.count("number of physical names");
+  r.expect_end_of_line();
+  for (std::int64_t i = 0; i < n; ++i) {
+    r.require_line("physical name " + std::to_string(i + 1) + " of " + std::to_string(n));
+    const std::int64_t dim = r.integer("physical dimension");
+    const std::int64_t tag = r.integer("physical tag");
+    if (dim < 0 || dim > 3) r.fail("physical dimension must be 0..3");
+    std::string_view rest = r.trimmed();
+    // the rest of the line after the two numbers: the quoted name
+    const std::size_t q0 = rest.find('"'), q1 = rest.rfind('"');
+    if (q0 == std::string_view::npos || q1 == q0)
+      r.fail("expected a quoted physical name after the dimension and the tag");
+    g.names[{static_cast<int>(dim), tag}] = std::string(rest.substr(q0 + 1, q1 - q0 - 1));
+  }
+  r.require_line("$EndPhysicalNames");
+  r.expect_exact("$EndPhysicalNames");
+}
+
+// $Entities of MSH 4.1: which physical groups each point, curve, surface and volume belongs to
+// (their boxes and bounding entities are read past).
+void read_entities(Reader& r, RawGroups& g, bool binary) {
+  std::array<std::int64_t, 4> counts{};
+  if (binary) {
+    for (auto& c : counts) c = r.binary_size("number of entities");
+  } else {
+    r.require_line("the entity counts");
+    for (auto& c : counts) c = r.count("number of entities");
+    r.expect_end_of_line();
+  }
+  for (int dim = 0; dim < 4; ++dim) {
+    for (std::int64_t i = 0; i < counts[static_cast<std::size_t>(dim)]; ++i) {
+      std::vector<std::int64_t> phys;
+      if (binary) {
+        const std::int64_t tag = r.binary<std::int32_t>("entity tag");
+        for (int k = 0; k < (dim == 0 ? 3 : 6); ++k) r.binary<double>("entity box");
+        const std::int64_t np = r.binary_size("number of physical tags");
+        if (np > 1 << 20) r.fail_binary("number of physical tags is out of range");
+        for (std::int64_t k = 0; k < np; ++k)
+          phys.push_back(r.binary<std::int32_t>("physical tag"));
+        if (dim > 0) {
+          const std::int64_t nb = r.binary_size("number of bounding entities");
+          if (nb > 1 << 24) r.fail_binary("number of bounding entities is out of range");
+          for (std::int64_t k = 0; k < nb; ++k) r.binary<std::int32_t>("bounding entity tag");
+        }
+        if (!phys.empty()) g.entity_physicals[{dim, tag}] = std::move(phys);
+      } else {
+        r.require_line("an entity");
+        const std::int64_t tag = r.integer("entity tag");
+        for (int k = 0; k < (dim == 0 ? 3 : 6); ++k) r.real("entity box");
+        const std::int64_t np = r.count("number of physical tags");
+        for (std::int64_t k = 0; k < np; ++k) phys.push_back(r.integer("physical tag"));
+        if (dim > 0) {
+          const std::int64_t nb = r.count("number of bounding entities");
+          for (std::int64_t k = 0; k < nb; ++k) r.integer("bounding entity tag");
+        }
+        r.expect_end_of_line();
+        if (!phys.empty()) g.entity_physicals[{dim, tag}] = std::move(phys);
+      }
+    }
+  }
+  if (binary) r.end_binary("$Entities");
+  r.require_line("$EndEntities");
+  r.expect_exact("$EndEntities");
+}
+
+// The physical groups resolved to the assembled mesh: volumes to elements, the others to the
+// nodes the tetrahedra use (after a TET4 promotion, with the mid-edge nodes of their edges).
+std::vector<GmshPhysicalGroup> resolve_groups(
+    const RawMesh& raw, const Tet10Mesh& mesh,
+    const std::unordered_map<std::int64_t, std::int32_t>& index_of,
+    const std::vector<std::int32_t>& compact, bool promoted) {
+  std::map<DimTag, GmshPhysicalGroup> groups;
+  auto group = [&](int dim, std::int64_t tag) -> GmshPhysicalGroup& {
+    GmshPhysicalGroup& g = groups[{dim, tag}];
+    g.dim = dim;
+    g.tag = tag;
+    const auto it = raw.groups.names.find({dim, tag});
+    if (it != raw.groups.names.end()) g.name = it->second;
+    return g;
+  };
+  for (std::size_t e = 0; e < raw.tets.size(); ++e)
+    for (std::int64_t p : raw.groups.physicals(raw.v2, 3, raw.tets[e].group_key))
+      group(3, p).elements.push_back(static_cast<std::int32_t>(e));
+  auto mesh_node = [&](std::int64_t tag) -> std::int32_t {
+    const auto it = index_of.find(tag);
+    return it == index_of.end() ? -1 : compact[static_cast<std::size_t>(it->second)];
+  };
+  std::map<std::pair<std::int32_t, std::int32_t>, std::int32_t> mid;  // corner pair -> mid node
+  if (promoted) {
+    for (const Tet10& el : mesh.elements)
+      for (int i = 0; i < 6; ++i)
+        mid[std::minmax(el[kTet10Edges[i][0]], el[kTet10Edges[i][1]])] = el[4 + i];
+  }
+  for (const auto& [key, tags] : raw.groups.node_tags) {
+    GmshPhysicalGroup& g = group(key.first, key.second);
+    for (std::int64_t t : tags)
+      if (const std::int32_t n = mesh_node(t); n >= 0) g.nodes.push_back(n);
+    if (promoted) {
+      const auto ed = raw.groups.edges.find(key);
+      if (ed != raw.groups.edges.end())
+        for (const auto& [a, b] : ed->second) {
+          const std::int32_t na = mesh_node(a), nb = mesh_node(b);
+          if (na < 0 || nb < 0) continue;
+          const auto it = mid.find(std::minmax(na, nb));
+          if (it != mid.end()) g.nodes.push_back(it->second);
+        }
+    }
+    std::sort(g.nodes.begin(), g.nodes.end());
+    g.nodes.erase(std::unique(g.nodes.begin(), g.nodes.end()), g.nodes.end());
+  }
+  // named groups that no element of the file belongs to are still listed (empty)
+  for (const auto& [key, name] : raw.groups.names) group(key.first, key.second);
+  std::vector<GmshPhysicalGroup> out;
+  for (auto& [key, g] : groups) out.push_back(std::move(g));
+  return out;
 }
 
 std::string read_file_text(const std::string& path) {
@@ -578,6 +807,7 @@ Tet10Mesh assemble(const Reader& r, RawMesh& raw, GmshReadInfo& info) {
     add_mid_edge_nodes(mesh);
     info.notes.push_back(std::to_string(info.tet4) + " TET4 element(s) promoted to TET10");
   }
+  info.groups = resolve_groups(raw, mesh, index_of, compact, info.tet4 > 0);
 
   // Orientation and degeneracy.
   std::vector<double> vol(mesh.elements.size());
@@ -684,6 +914,7 @@ Tet10Mesh read_gmsh(const std::string& path, GmshReadInfo* info_out) {
   r.expect_exact("$EndMeshFormat");
 
   RawMesh raw;
+  raw.v2 = major == 2;
   while (r.next_nonblank_line()) {
     const std::string_view head = r.trimmed();
     if (head.empty() || head.front() != '$')
@@ -696,6 +927,11 @@ Tet10Mesh read_gmsh(const std::string& path, GmshReadInfo* info_out) {
         binary ? read_nodes_v41_binary(r, raw) : read_nodes_v41(r, raw);
       else
         binary ? read_nodes_v2_binary(r, raw) : read_nodes_v2(r, raw);
+    } else if (head == "$PhysicalNames") {
+      read_physical_names(r, raw.groups);
+    } else if (head == "$Entities" && major == 4) {
+      if (raw.have_elements) r.fail("$Entities after $Elements");
+      read_entities(r, raw.groups, binary);
     } else if (head == "$Elements") {
       if (raw.have_elements) r.fail("second $Elements section");
       if (!raw.have_nodes) r.fail("$Elements before $Nodes");
@@ -728,7 +964,47 @@ Tet10Mesh read_gmsh(const std::string& path, GmshReadInfo* info_out) {
   return mesh;
 }
 
-std::string gmsh_text(const Tet10Mesh& mesh) {
+GmshBody gmsh_body(Tet10Mesh mesh, const GmshReadInfo& info, const std::string& volume) {
+  GmshBody body;
+  std::vector<std::int32_t> new_index;  // file mesh node -> body node (-1: not in the body)
+  if (volume.empty()) {
+    body.mesh = std::move(mesh);
+  } else {
+    const GmshPhysicalGroup* g = nullptr;
+    for (const GmshPhysicalGroup& c : info.groups)
+      if (c.dim == 3 && c.label() == volume) g = &c;
+    if (!g || g->elements.empty())
+      throw std::invalid_argument("no physical volume '" + volume + "' with tetrahedra");
+    new_index.assign(mesh.nodes.size(), -1);
+    std::vector<char> used(mesh.nodes.size(), 0);
+    for (std::int32_t e : g->elements)
+      for (std::int32_t n : mesh.elements[static_cast<std::size_t>(e)])
+        used[static_cast<std::size_t>(n)] = 1;
+    for (std::size_t n = 0; n < used.size(); ++n)
+      if (used[n]) {
+        new_index[n] = static_cast<std::int32_t>(body.mesh.nodes.size());
+        body.mesh.nodes.push_back(mesh.nodes[n]);
+      }
+    for (std::int32_t e : g->elements) {
+      Tet10 el = mesh.elements[static_cast<std::size_t>(e)];
+      for (std::int32_t& n : el) n = new_index[static_cast<std::size_t>(n)];
+      body.mesh.elements.push_back(el);
+    }
+  }
+  for (const GmshPhysicalGroup& c : info.groups) {
+    if (c.dim == 3) continue;
+    std::vector<std::int32_t> nodes;
+    for (std::int32_t n : c.nodes) {
+      const std::int32_t b = new_index.empty() ? n : new_index[static_cast<std::size_t>(n)];
+      if (b >= 0) nodes.push_back(b);
+    }
+    std::sort(nodes.begin(), nodes.end());
+    if (!nodes.empty()) body.node_sets.emplace_back(c.label(), std::move(nodes));
+  }
+  return body;
+}
+
+std::string gmsh_text(const Tet10Mesh& mesh, const std::string& physical_volume) {
   std::string out;
   out.reserve(mesh.nodes.size() * 64 + mesh.elements.size() * 96 + 512);
   char buf[64];
@@ -750,10 +1026,13 @@ std::string gmsh_text(const Tet10Mesh& mesh) {
   }
   const auto nn = static_cast<std::int64_t>(mesh.nodes.size());
   const auto ne = static_cast<std::int64_t>(mesh.elements.size());
-  out += "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Entities\n0 0 0 1\n1";
+  const bool physical = !physical_volume.empty();
+  out += "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
+  if (physical) out += "$PhysicalNames\n1\n3 1 \"" + physical_volume + "\"\n$EndPhysicalNames\n";
+  out += "$Entities\n0 0 0 1\n1";
   for (int k = 0; k < 3; ++k) out += ' ', put_double(lo[k]);
   for (int k = 0; k < 3; ++k) out += ' ', put_double(hi[k]);
-  out += " 0 0\n$EndEntities\n$Nodes\n";
+  out += physical ? " 1 1 0\n$EndEntities\n$Nodes\n" : " 0 0\n$EndEntities\n$Nodes\n";
   out += "1 ", put_int(nn), out += " 1 ", put_int(nn), out += '\n';
   out += "3 1 0 ", put_int(nn), out += '\n';
   for (std::int64_t i = 1; i <= nn; ++i) put_int(i), out += '\n';
@@ -775,10 +1054,11 @@ std::string gmsh_text(const Tet10Mesh& mesh) {
   return out;
 }
 
-void write_gmsh(const Tet10Mesh& mesh, const std::string& path) {
+void write_gmsh(const Tet10Mesh& mesh, const std::string& path,
+                const std::string& physical_volume) {
   // Atomically, so that a killed `femdem mesh` or two sweep jobs filling the mesh cache at once
   // never leave a half-written file under the final name.
-  write_file_atomically(path, gmsh_text(mesh));
+  write_file_atomically(path, gmsh_text(mesh, physical_volume));
 }
 
 }  // namespace femdem

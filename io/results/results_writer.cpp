@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "femdem_version.hpp"
 #include "io/atomic_file.hpp"
 #include "io/hdf5_handle.hpp"
 
@@ -38,6 +39,7 @@ struct FrameDataset {
   hsize_t rows;
   hsize_t comps;  // 1: scalar, stored as rank 2
   const char* xdmf_type;
+  const char* unit;
   Handle dset;
   int rank() const { return comps > 1 ? 3 : 2; }
 };
@@ -53,6 +55,7 @@ struct ResultsWriter::Impl {
   std::vector<FrameDataset> fields;  // displacement, velocity, stress, von_mises, pressure, eps
   std::vector<double> stress9;       // 9 per element, reused every frame
   std::int64_t frames = 0;
+  std::int64_t views = 0;   // frames 0..views-1 have /frame_views
   std::string xdmf_frames;  // the Grid elements of all frames written so far
   bool open = false;
 
@@ -140,12 +143,86 @@ struct ResultsWriter::Impl {
   }
 
   void list_fields() {
-    fields.push_back({"displacement", true, nodes, 3, "Vector", {}});
-    fields.push_back({"velocity", true, nodes, 3, "Vector", {}});
-    fields.push_back({"stress", false, elements, 9, "Tensor", {}});
-    fields.push_back({"von_mises", false, elements, 1, "Scalar", {}});
-    fields.push_back({"pressure", false, elements, 1, "Scalar", {}});
-    fields.push_back({"equivalent_plastic_strain", false, elements, 1, "Scalar", {}});
+    fields.push_back({"displacement", true, nodes, 3, "Vector", "m", {}});
+    fields.push_back({"velocity", true, nodes, 3, "Vector", "m/s", {}});
+    fields.push_back({"stress", false, elements, 9, "Tensor", "Pa", {}});
+    fields.push_back({"von_mises", false, elements, 1, "Scalar", "Pa", {}});
+    fields.push_back({"pressure", false, elements, 1, "Scalar", "Pa", {}});
+    fields.push_back({"equivalent_plastic_strain", false, elements, 1, "Scalar", "1", {}});
+  }
+
+  hid_t frame_file_type() const {
+    return options.single_precision ? H5T_IEEE_F32LE : H5T_IEEE_F64LE;
+  }
+
+  // The frames that get /frame_views: those the run expects, within the cap.
+  std::int64_t wanted_views() const {
+    return std::clamp<std::int64_t>(options.expected_frames, 0, kMaxFrameViews);
+  }
+
+  // Makes /frame_views/NNNNNN/<field> for frames [views, until): virtual datasets onto row
+  // NNNNNN of /frames/<field> ("." = this file). Not allowed once SWMR writing has started.
+  void create_views(hid_t f, std::int64_t until) {
+    if (until <= views) return;
+    const QuietErrors quiet;
+    Handle top(H5Lexists(f, "frame_views", H5P_DEFAULT) > 0
+                   ? H5Gopen2(f, "frame_views", H5P_DEFAULT)
+                   : H5Gcreate2(f, "frame_views", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+               H5Gclose);
+    check(top.get(), "creating /frame_views");
+    for (std::int64_t k = views; k < until; ++k) {
+      char name[32];
+      std::snprintf(name, sizeof name, "%06lld", static_cast<long long>(k));
+      Handle g(check(H5Gcreate2(top.get(), name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                     std::string("creating /frame_views/") + name),
+               H5Gclose);
+      for (const FrameDataset& fd : fields) {
+        const int rank = fd.rank();
+        const hsize_t src_dims[3] = {static_cast<hsize_t>(k) + 1, fd.rows, fd.comps};
+        const hsize_t src_max[3] = {H5S_UNLIMITED, fd.rows, fd.comps};
+        Handle src(check(H5Screate_simple(rank, src_dims, src_max), "H5Screate_simple"), H5Sclose);
+        const hsize_t start[3] = {static_cast<hsize_t>(k), 0, 0};
+        const hsize_t count[3] = {1, fd.rows, fd.comps};
+        check_status(H5Sselect_hyperslab(src.get(), H5S_SELECT_SET, start, nullptr, count, nullptr),
+                     "H5Sselect_hyperslab");
+        const hsize_t view_dims[2] = {fd.rows, fd.comps};
+        Handle view(check(H5Screate_simple(rank - 1, view_dims, nullptr), "H5Screate_simple"),
+                    H5Sclose);
+        Handle dcpl(check(H5Pcreate(H5P_DATASET_CREATE), "H5Pcreate"), H5Pclose);
+        const std::string source = std::string("/frames/") + fd.name;
+        check_status(H5Pset_virtual(dcpl.get(), view.get(), ".", source.c_str(), src.get()),
+                     "H5Pset_virtual");
+        Handle d(check(H5Dcreate2(g.get(), fd.name, frame_file_type(), view.get(), H5P_DEFAULT,
+                                  dcpl.get(), H5P_DEFAULT),
+                       std::string("creating /frame_views/") + name + "/" + fd.name),
+                 H5Dclose);
+      }
+    }
+    views = until;
+  }
+
+  // The number of frames with views in an existing file (0 in a file of format_version 1).
+  std::int64_t count_views(hid_t f) const {
+    const QuietErrors quiet;
+    if (H5Lexists(f, "frame_views", H5P_DEFAULT) <= 0) return 0;
+    Handle top(check(H5Gopen2(f, "frame_views", H5P_DEFAULT), "opening /frame_views"), H5Gclose);
+    H5G_info_t info{};
+    check_status(H5Gget_info(top.get(), &info), "reading /frame_views");
+    return static_cast<std::int64_t>(info.nlinks);
+  }
+
+  void write_root_attributes(hid_t root) {
+    write_attribute_int(root, "complete", 0);
+    write_attribute_int(root, "format_version", 2);
+    write_attribute_string(root, "format", "femdem-results");
+    write_attribute_string(root, "femdem_version",
+                           std::string(FEMDEM_VERSION) + " (git " + FEMDEM_GIT_REVISION + ")");
+    write_attribute_string(root, "units", "SI: m, s, kg, Pa, N, J");
+    write_attribute_string(root, "node_order",
+                           "TET10, VTK quadratic tetra: corners 0 1 2 3, then the mid-edge nodes "
+                           "of edges 0-1 1-2 2-0 0-3 1-3 2-3");
+    if (!options.scene_digest.empty())
+      write_attribute_string(root, "scene_digest", options.scene_digest);
   }
 
   // The frame datasets' access: no chunk cache (whole chunks go straight to the file).
@@ -209,6 +286,8 @@ struct ResultsWriter::Impl {
       const int zero = 0;
       check_status(H5Awrite(attr.get(), H5T_NATIVE_INT, &zero), "writing 'complete'");
       attr.reset();
+      views = count_views(f);
+      create_views(f, wanted_views());
       if (file_rw.reset() < 0) fail("closing the file");
       xdmf_frames.clear();
       for (frames = 1; frames <= keep; ++frames) append_xdmf_frame(times[frames - 1]);
@@ -229,7 +308,7 @@ struct ResultsWriter::Impl {
   }
 
   void create_frame_dataset(hid_t group, FrameDataset& f) {
-    const hid_t file_type = options.single_precision ? H5T_IEEE_F32LE : H5T_IEEE_F64LE;
+    const hid_t file_type = frame_file_type();
     const std::size_t value_size = options.single_precision ? 4 : 8;
     const int rank = f.rank();
     const hsize_t dims[3] = {0, f.rows, f.comps};
@@ -246,6 +325,7 @@ struct ResultsWriter::Impl {
                                      dapl.get()),
                           std::string("creating /frames/") + f.name),
                     H5Dclose);
+    write_attribute_string(f.dset.get(), "unit", f.unit);
   }
 
   // Appends row `frames` of dataset `dset` (rank 1..3, fixed trailing dims) from `data`.
@@ -307,10 +387,12 @@ struct ResultsWriter::Impl {
          "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">results.h5:/mesh/element_body"
          "</DataItem>\n";
     s += "        </Attribute>\n";
+    const bool viewed = frames - 1 < views;
     for (const FrameDataset& fd : fields) {
       const std::string rows = std::to_string(fd.rows);
       const bool vec = fd.comps > 1;
       const std::string c = std::to_string(fd.comps);
+      const std::string shape = rows + (vec ? " " + c : "");
       s += "        <Attribute Name=\"";
       s += fd.name;
       s += "\" AttributeType=\"";
@@ -318,16 +400,21 @@ struct ResultsWriter::Impl {
       s += "\" Center=\"";
       s += fd.node_centred ? "Node" : "Cell";
       s += "\">\n";
-      s += "          <DataItem ItemType=\"HyperSlab\" Dimensions=\"1 " + rows +
-           (vec ? " " + c : "") + "\" Type=\"HyperSlab\" NumberType=\"Float\" Precision=\"" +
-           precision + "\">\n";  // the Xdmf3 readers need the type on the slab too
-      s += "            <DataItem Dimensions=\"3 " + std::string(vec ? "3" : "2") +
-           "\" NumberType=\"UInt\" Precision=\"4\" Format=\"XML\">" + k +
-           (vec ? " 0 0 1 1 1 1 " : " 0 1 1 1 ") + rows + (vec ? " " + c : "") + "</DataItem>\n";
-      s += "            <DataItem Dimensions=\"" + f + " " + rows + (vec ? " " + c : "") +
-           "\" NumberType=\"Float\" Precision=\"" + precision +
-           "\" Format=\"HDF\">results.h5:/frames/" + fd.name + "</DataItem>\n";
-      s += "          </DataItem>\n";
+      if (viewed) {
+        s += "          <DataItem Dimensions=\"" + shape + "\" NumberType=\"Float\" Precision=\"" +
+             precision + "\" Format=\"HDF\">results.h5:/frame_views/" + std::string(name + 6) +
+             "/" + fd.name + "</DataItem>\n";
+      } else {
+        s += "          <DataItem ItemType=\"HyperSlab\" Dimensions=\"1 " + shape +
+             "\" Type=\"HyperSlab\" NumberType=\"Float\" Precision=\"" + precision + "\">\n";
+        s += "            <DataItem Dimensions=\"3 " + std::string(vec ? "3" : "2") +
+             "\" NumberType=\"UInt\" Precision=\"4\" Format=\"XML\">" + k +
+             (vec ? " 0 0 1 1 1 1 " : " 0 1 1 1 ") + shape + "</DataItem>\n";
+        s += "            <DataItem Dimensions=\"" + f + " " + shape +
+             "\" NumberType=\"Float\" Precision=\"" + precision +
+             "\" Format=\"HDF\">results.h5:/frames/" + fd.name + "</DataItem>\n";
+        s += "          </DataItem>\n";
+      }
       s += "        </Attribute>\n";
     }
     s += "      </Grid>\n";
@@ -350,11 +437,7 @@ ResultsWriter::ResultsWriter(const std::filesystem::path& folder, const ResultsM
                           "creating the file"),
                   H5Fclose);
   const hid_t root = m.file.get();
-  m.write_attribute_int(root, "complete", 0);
-  m.write_attribute_int(root, "format_version", 1);
-  m.write_attribute_string(root, "format", "femdem-results");
-  if (!options.scene_digest.empty())
-    m.write_attribute_string(root, "scene_digest", options.scene_digest);
+  m.write_root_attributes(root);
 
   // --- mesh ---
   {
@@ -404,6 +487,7 @@ ResultsWriter::ResultsWriter(const std::filesystem::path& folder, const ResultsM
     for (FrameDataset& f : m.fields) m.create_frame_dataset(g.get(), f);
     m.write_attribute_string(m.fields[2].dset.get(), "components", "xx xy xz yx yy yz zx zy zz");
   }
+  m.create_views(root, m.wanted_views());
 
   // From here on the file stays valid whatever happens to this process.
   m.check_status(H5Fstart_swmr_write(root), "H5Fstart_swmr_write");

@@ -2,10 +2,12 @@
 #pragma once
 // results.h5 + results.xdmf: the mesh once, then one frame per call of write_frame().
 //
-// Layout of results.h5 (HDF5 1.10 format, written in SWMR mode):
+// Layout of results.h5 (HDF5 1.10 format, written in SWMR mode; format_version 2):
 //   /                      attributes: complete (int32: 0 while running or if the run was killed
 //                          or closed with close(false), 1 after close(true)), format
-//                          ("femdem-results"), format_version (int32, 1)
+//                          ("femdem-results"), format_version (int32, 2), femdem_version,
+//                          scene_digest, units ("SI: m, s, kg, Pa, N, J"), node_order (the TET10
+//                          node order of /mesh/connectivity, in words)
 //   /mesh/coordinates      [nodes, 3]      float64, reference coordinates
 //   /mesh/connectivity     [elements, 10]  int32, TET10 in VTK / XDMF Tetrahedron_10 order
 //   /mesh/node_body        [nodes]         int32
@@ -19,8 +21,18 @@
 //   /frames/von_mises      [frames, elements]
 //   /frames/pressure       [frames, elements]
 //   /frames/equivalent_plastic_strain [frames, elements]
-// Frame datasets are chunked [1, up to ~1 MiB of one frame, components] with an unlimited
-// first dimension, so one frame is a contiguous set of whole chunks.
+//   /frame_views/NNNNNN/<field>  one frame of each field above as a dataset of its own
+//                          ([nodes, 3], [elements, 9], [elements]): HDF5 virtual datasets onto
+//                          row NNNNNN of /frames/<field>, no data of their own
+// Every /frames dataset but time carries an attribute `unit`. Frame datasets are chunked
+// [1, up to ~1 MiB of one frame, components] with an unlimited first dimension, so one frame is
+// a contiguous set of whole chunks.
+//
+// Why the views: XDMF readers that cannot take a HyperSlab of a larger dataset (meshio's
+// TimeSeriesReader; ParaView's Xdmf3 readers lose such fields) read a frame as one whole dataset.
+// SWMR mode allows no new objects once it has started, so the views are made when the file is
+// created (or reopened to resume), for the frames the run expects (ResultsOptions); a frame past
+// them is named in results.xdmf by a HyperSlab, which ParaView's legacy XDMF reader reads.
 //
 // Crash consistency: the file is written in HDF5's single-writer/multiple-reader mode, whose
 // ordered metadata flushes keep the file valid at every moment. Each frame is written, flushed,
@@ -28,13 +40,12 @@
 // frames. results.xdmf is then replaced atomically (temp + rename) and names only complete
 // frames. After a kill, open results.h5 with H5F_ACC_SWMR_READ (h5py: swmr=True), or clear the
 // writer's mark first with `h5clear -s results.h5` (HDF5 tools) for readers that do not use
-// SWMR, e.g. ParaView.
+// SWMR, e.g. ParaView and meshio.
 //
 // results.xdmf: a Temporal Collection of Uniform grids; every grid uses the reference
-// coordinates as geometry and HyperSlab DataItems into the frame datasets. The deformed shape
-// is shown by ParaView's "Warp By Vector" filter on `displacement` (scale factor 1).
-// Stress is declared as a 9-component "Tensor" because XDMF readers disagree on the component
-// order of "Tensor6".
+// coordinates as geometry and the frame's views as attributes. The deformed shape is shown by
+// ParaView's "Warp By Vector" filter on `displacement` (scale factor 1). Stress is declared as
+// a 9-component "Tensor" because XDMF readers disagree on the component order of "Tensor6".
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -65,7 +76,14 @@ struct FrameFields {
 struct ResultsOptions {
   bool single_precision = false;  // store frame fields as float32 (half the size)
   std::string scene_digest = {};  // root attribute scene_digest (io/scene/scene_digest.hpp)
+  // The frames the run expects to write (its schedule's count): /frame_views are made for this
+  // many (at most kMaxFrameViews). 0: none (every frame is named by a HyperSlab).
+  std::int64_t expected_frames = 0;
 };
+
+// The most frames /frame_views are made for (6 small objects each, made before the run starts:
+// see docs/PERFORMANCE.md for their cost).
+inline constexpr std::int64_t kMaxFrameViews = 20000;
 
 // The scene_digest attribute of `folder`/results.h5 ("" when the file or the attribute is
 // missing): which scene the results belong to, what femdem resume checks a checkpoint against.

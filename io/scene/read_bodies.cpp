@@ -21,8 +21,8 @@ const std::vector<std::string> kGenerators = {"box", "cylinder", "sphere"};
 
 }  // namespace
 
-Tet10Mesh Reader::read_mesh(const toml::table& mesh, const std::string& bp,
-                            toml::table& out) const {
+Tet10Mesh Reader::read_mesh(const toml::table& mesh, const std::string& bp, toml::table& out,
+                            NodeSets* node_sets) const {
   const std::string p = dotted(bp, "mesh");
   const bool has_gen = mesh.contains("generator"), has_file = mesh.contains("file");
   if (has_gen && has_file) fail(&mesh, p, "give either 'generator' or 'file', not both");
@@ -137,7 +137,7 @@ Tet10Mesh Reader::read_mesh(const toml::table& mesh, const std::string& bp,
   const std::string ext = lower(fs::path(file).extension().string());
   const bool is_cad = ext != ".msh" && cad_format_supported(ext);
   if (ext == ".msh")
-    check_keys(mesh, p, {"file"}, "for a gmsh .msh file (it is used as meshed)");
+    check_keys(mesh, p, {"file", "physical"}, "for a gmsh .msh file (it is used as meshed)");
   else if (is_cad)
     check_keys(mesh, p, {"file", "element_size", "scale"}, "for a CAD surface file");
   else
@@ -175,13 +175,37 @@ Tet10Mesh Reader::read_mesh(const toml::table& mesh, const std::string& bp,
     return std::move(cm.mesh);
   }
   Tet10Mesh m;
+  GmshReadInfo info;
   try {
-    m = read_gmsh(full.string());
+    m = read_gmsh(full.string(), &info);
   } catch (const InputError& e) {
     fail(fn, fkey, "bad mesh: " + e.describe());
   } catch (const std::exception& e) {
     fail(fn, fkey, "cannot read mesh '" + full.string() + "': " + e.what());
   }
+  // Physical volumes: one is the body; several need `physical` to say which.
+  std::vector<std::string> volumes;
+  for (const GmshPhysicalGroup& g : info.groups)
+    if (g.dim == 3 && !g.elements.empty()) volumes.push_back(g.label());
+  std::string volume;
+  if (const toml::node* pn = mesh.get("physical")) {
+    volume = string(mesh, "physical", p, &mesh);
+    if (std::find(volumes.begin(), volumes.end(), volume) == volumes.end())
+      fail(pn, dotted(p, "physical"),
+           "'" + file + "' has no physical volume '" + volume + "'" +
+               did_you_mean(volume, volumes) +
+               (volumes.empty() ? "; it defines no physical volumes"
+                                : "; its physical volumes: " + join(volumes)));
+    out.insert_or_assign("physical", volume);
+  } else if (volumes.size() > 1) {
+    fail(fn, fkey,
+         "'" + file + "' holds " + std::to_string(volumes.size()) + " physical volumes (" +
+             join(volumes) +
+             "): choose the body's with physical = \"NAME\" (one [[bodies]] entry per volume)");
+  }
+  GmshBody body = gmsh_body(std::move(m), info, volume);
+  m = std::move(body.mesh);
+  if (node_sets) *node_sets = std::move(body.node_sets);
   // The reader checks this too; repeated here so that any mesh source is held to it.
   const MeshQuality q = mesh_quality(m);
   if (q.bad_elements > 0)
@@ -236,7 +260,9 @@ void Reader::read_bodies(const toml::table& root, ModelSpec& spec, toml::array& 
     const toml::node* mn = t.get("mesh");
     if (!mn) fail(&t, dotted(p, "mesh"), "required value is missing");
     toml::table mesh_out;
-    b.mesh = read_mesh(require_table(mn, dotted(p, "mesh")), p, mesh_out);
+    NodeSets node_sets;
+    b.mesh = read_mesh(require_table(mn, dotted(p, "mesh")), p, mesh_out, &node_sets);
+    body_node_sets_[b.name] = std::move(node_sets);
     if (b.mesh.elements.empty() || b.mesh.nodes.empty())
       fail(mn, dotted(p, "mesh"), "the mesh has no elements");
     place_mesh(b.mesh, rotation, position);

@@ -150,13 +150,23 @@ RegionSpec Reader::read_region(const toml::table& c, const std::string& cp,
   if (n->is_string())
     fail(n, p,
          "unknown region '" + n->as_string()->get() +
-             "': use \"all\", { box_min = [...], box_max = [...] } or { plane_point = [...], "
-             "plane_normal = [...] }");
+             "': use \"all\", { box_min = [...], box_max = [...] }, { plane_point = [...], "
+             "plane_normal = [...] } or { physical = \"NAME\" }");
   if (!n->is_table())
     fail(n, p,
          "expected \"all\" or a table (box_min/box_max or plane_point/plane_normal), got " +
              type_name(*n));
   const toml::table& t = *n->as_table();
+  if (t.contains("physical")) {
+    // a node set of the body's mesh file, resolved by read_constraints
+    check_keys(t, p, {"physical"}, "for a physical group of the body's mesh file");
+    r.kind = RegionSpec::Kind::Nodes;
+    r.node_set = string(t, "physical", p, &t);
+    toml::table o;
+    o.insert_or_assign("physical", r.node_set);
+    out.insert_or_assign("region", std::move(o));
+    return r;
+  }
   const bool box = t.contains("box_min") || t.contains("box_max");
   const bool plane = t.contains("plane_point") || t.contains("plane_normal");
   if (box && plane) fail(n, p, "mixes a box (box_min/box_max) and a plane (plane_point/...)");
@@ -222,6 +232,23 @@ void Reader::read_constraints(const toml::table& root, ModelSpec& spec, toml::ar
     if (t.contains("name")) o.insert_or_assign("name", t.get("name")->as_string()->get());
     o.insert_or_assign("body", body);
     c.region = read_region(t, p, o);
+    if (c.region.kind == RegionSpec::Kind::Nodes) {
+      const NodeSets& sets = body_node_sets_[body];
+      std::vector<std::string> labels;
+      for (const auto& [label, nodes] : sets) {
+        labels.push_back(label);
+        if (label == c.region.node_set) c.region.nodes = nodes;
+      }
+      if (c.region.nodes.empty()) {
+        const toml::node* rn = t.get("region")->as_table()->get("physical");
+        fail(rn, dotted(p, "region.physical"),
+             "body '" + body + "' has no node set '" + c.region.node_set + "'" +
+                 did_you_mean(c.region.node_set, labels) +
+                 (labels.empty() ? "; its mesh defines none (node sets are the physical points, "
+                                   "curves and surfaces of a gmsh .msh file)"
+                                 : "; its node sets: " + join(labels)));
+      }
+    }
     bool any_fix = false;
     if (const toml::node* f = t.get("fix")) {
       const std::string fk = dotted(p, "fix");

@@ -103,7 +103,10 @@ class Reader {
   void read_materials(const toml::table& root, ModelSpec& spec, toml::array& out) const;
   void read_bodies(const toml::table& root, ModelSpec& spec, toml::array& out,
                    std::set<std::string>& names) const;
-  Tet10Mesh read_mesh(const toml::table& mesh, const std::string& prefix, toml::table& out) const;
+  // A body's named node sets (gmsh physical points, curves, surfaces): (name, node indices).
+  using NodeSets = std::vector<std::pair<std::string, std::vector<std::int32_t>>>;
+  Tet10Mesh read_mesh(const toml::table& mesh, const std::string& prefix, toml::table& out,
+                      NodeSets* node_sets = nullptr) const;
   void read_walls(const toml::table& root, ModelSpec& spec, toml::array& out,
                   std::set<std::string>& names) const;
   void read_constraints(const toml::table& root, ModelSpec& spec, toml::array& out) const;
@@ -123,6 +126,7 @@ class Reader {
   std::string scene_path_;
   std::filesystem::path base_dir_;
   std::map<const toml::node*, std::string> override_nodes_;  // nodes created by --set
+  mutable std::map<std::string, NodeSets> body_node_sets_;   // by body name (read_bodies)
 
  public:
   // What happened while reading that the user should see in the log (CAD meshing, cache).

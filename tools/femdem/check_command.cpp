@@ -172,6 +172,10 @@ void print_scene_summary(const SceneFile& scene) {
           region = "nodes on the plane through " + vec(c.region.plane_point) + " with normal " +
                    vec(c.region.plane_normal);
           break;
+        case RegionSpec::Kind::Nodes:
+          region = fmt::format("the {} nodes of its mesh's physical group '{}'",
+                               c.region.nodes.size(), c.region.node_set);
+          break;
       }
       std::string action;
       if (c.velocity) {

@@ -3,6 +3,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "elements/tet_geometry.hpp"
@@ -24,7 +25,10 @@ int mesh_command(const std::string& mesh_input, std::string mesh_output,
     throw InputError("the output would overwrite the input", mesh_output, 0, 0, "-o");
   CadMeshReport report;
   const Tet10Mesh m = mesh_cad_file(mesh_input, mesh_options, &report);
-  write_gmsh(m, mesh_output);
+  // the volume is named after the input file, so a scene can select it among others
+  std::string volume = std::filesystem::path(mesh_input).stem().string();
+  std::replace(volume.begin(), volume.end(), '"', '_');
+  write_gmsh(m, mesh_output, volume);
   fmt::print("{}\n", format_cad_report(report));
   fmt::print("{}", indent(format_mesh_quality(mesh_quality(m)), ""));
   fmt::print("wrote {}\n", mesh_output);

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -461,4 +462,110 @@ TEST(GmshIo, TruncatedOrCorruptBinaryFilesNameTheByte) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("other byte order"), std::string::npos) << e.describe();
   }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Physical groups, in every format gmsh 4.8.4 wrote of two_blocks.geo: the volumes "left" (the
+// cube [0,1]^3) and "right" ([2,3] x [0,1]^2), the surfaces "left_bottom" (z = 0 of the left
+// cube) and "right_top" (z = 1 of the right one) and the point "left_top_corner" (0, 0, 1).
+// Each group is checked against the geometry it was drawn on, not against the reader's output.
+
+namespace {
+
+const GmshPhysicalGroup* find_group(const GmshReadInfo& info, int dim, const std::string& name) {
+  for (const GmshPhysicalGroup& g : info.groups)
+    if (g.dim == dim && g.name == name) return &g;
+  return nullptr;
+}
+
+// The mesh nodes that `inside` holds for, sorted.
+template <class Pred>
+std::vector<std::int32_t> nodes_where(const Tet10Mesh& m, Pred inside) {
+  std::vector<std::int32_t> out;
+  for (std::size_t n = 0; n < m.nodes.size(); ++n)
+    if (inside(m.nodes[n])) out.push_back(static_cast<std::int32_t>(n));
+  return out;
+}
+
+}  // namespace
+
+TEST(GmshIo, PhysicalGroupsMatchTheGeometryTheyWereDrawnOn) {
+  constexpr double eps = 1e-9;
+  for (const char* name :
+       {"two_blocks_ascii41.msh", "two_blocks_bin41.msh", "two_blocks_ascii22.msh",
+        "two_blocks_bin22.msh", "two_blocks_tet4_bin41.msh", "two_blocks_tet4_bin22.msh"}) {
+    SCOPED_TRACE(name);
+    GmshReadInfo info;
+    const Tet10Mesh m = read_gmsh(gmsh_data(name), &info);
+    ASSERT_EQ(info.groups.size(), 5u);
+    const GmshPhysicalGroup* left = find_group(info, 3, "left");
+    const GmshPhysicalGroup* right = find_group(info, 3, "right");
+    ASSERT_TRUE(left && right);
+    EXPECT_EQ(left->elements.size() + right->elements.size(), m.elements.size());
+    for (const auto& [g, x0] : {std::pair{left, 0.0}, std::pair{right, 2.0}}) {
+      double volume = 0.0;
+      for (std::int32_t e : g->elements) {
+        volume += tet10_volume(m, static_cast<std::size_t>(e));
+        for (std::int32_t n : m.elements[static_cast<std::size_t>(e)]) {
+          EXPECT_GE(m.nodes[static_cast<std::size_t>(n)].x(), x0 - eps);
+          EXPECT_LE(m.nodes[static_cast<std::size_t>(n)].x(), x0 + 1 + eps);
+        }
+      }
+      EXPECT_NEAR(volume, 1.0, 1e-12);
+    }
+    const GmshPhysicalGroup* bottom = find_group(info, 2, "left_bottom");
+    const GmshPhysicalGroup* top = find_group(info, 2, "right_top");
+    const GmshPhysicalGroup* corner = find_group(info, 0, "left_top_corner");
+    ASSERT_TRUE(bottom && top && corner);
+    // every node on the face, mid-edge nodes included (those a TET4 promotion adds too)
+    EXPECT_EQ(bottom->nodes, nodes_where(m, [&](const Vec3& p) {
+                return std::abs(p.z()) < eps && p.x() < 1 + eps;
+              }));
+    EXPECT_EQ(top->nodes, nodes_where(m, [&](const Vec3& p) {
+                return std::abs(p.z() - 1) < eps && p.x() > 2 - eps;
+              }));
+    EXPECT_EQ(corner->nodes,
+              nodes_where(m, [&](const Vec3& p) { return (p - Vec3(0, 0, 1)).norm() < eps; }));
+    EXPECT_EQ(corner->nodes.size(), 1u);
+    EXPECT_GE(bottom->nodes.size(), 9u);  // at least a 2 x 2 grid of six-node triangles
+  }
+}
+
+TEST(GmshIo, APhysicalVolumeIsABodyWithTheNodeSetsItTouches) {
+  GmshReadInfo info;
+  Tet10Mesh m = read_gmsh(gmsh_data("two_blocks_bin41.msh"), &info);
+  const GmshBody left = gmsh_body(m, info, "left");
+  EXPECT_NEAR(total_volume(left.mesh), 1.0, 1e-12);
+  EXPECT_EQ(left.mesh.elements.size(), find_group(info, 3, "left")->elements.size());
+  for (const Vec3& p : left.mesh.nodes) EXPECT_LE(p.x(), 1 + 1e-9);
+  for (const Tet10& e : left.mesh.elements)
+    for (std::int32_t n : e) EXPECT_LT(static_cast<std::size_t>(n), left.mesh.nodes.size());
+  std::map<std::string, std::vector<std::int32_t>> sets(left.node_sets.begin(),
+                                                        left.node_sets.end());
+  ASSERT_EQ(sets.size(), 2u);  // right_top has no node in the left cube
+  for (std::int32_t n : sets.at("left_bottom"))
+    EXPECT_NEAR(left.mesh.nodes[static_cast<std::size_t>(n)].z(), 0.0, 1e-12);
+  EXPECT_EQ(sets.at("left_bottom").size(), find_group(info, 2, "left_bottom")->nodes.size());
+  ASSERT_EQ(sets.at("left_top_corner").size(), 1u);
+  EXPECT_LT(
+      (left.mesh.nodes[static_cast<std::size_t>(sets.at("left_top_corner")[0])] - Vec3(0, 0, 1))
+          .norm(),
+      1e-12);
+  const GmshBody whole = gmsh_body(m, info, "");
+  EXPECT_EQ(whole.mesh.elements.size(), m.elements.size());
+  EXPECT_EQ(whole.node_sets.size(), 3u);
+  EXPECT_THROW(gmsh_body(m, info, "middle"), std::invalid_argument);
+}
+
+TEST(GmshIo, WrittenPhysicalVolumeReadsBack) {
+  GmshReadInfo info;
+  const Tet10Mesh m = read_gmsh(gmsh_data("two_blocks_ascii41.msh"));
+  const std::string p = tmp_path("named_volume.msh");
+  write_gmsh(m, p, "block");
+  const Tet10Mesh back = read_gmsh(p, &info);
+  EXPECT_EQ(back.elements, m.elements);
+  ASSERT_EQ(info.groups.size(), 1u);
+  EXPECT_EQ(info.groups[0].dim, 3);
+  EXPECT_EQ(info.groups[0].name, "block");
+  EXPECT_EQ(info.groups[0].elements.size(), m.elements.size());
 }

@@ -300,6 +300,72 @@ TEST(ResultsWriter, WritesMeshFramesAndXdmf) {
   }
 }
 
+std::string read_string_attribute(hid_t obj, const char* name) {
+  H5 a{H5Aopen(obj, name, H5P_DEFAULT), H5Aclose};
+  if (a.id < 0) return "(missing)";
+  H5 t{H5Aget_type(a.id), H5Tclose};
+  std::string v(H5Tget_size(t.id), '\0');
+  EXPECT_GE(H5Aread(a.id, t.id, v.data()), 0);
+  return v.substr(0, v.find('\0'));
+}
+
+// The frames the writer expects get /frame_views: one dataset per field and frame, named by a
+// plain HDF DataItem in results.xdmf (what meshio and ParaView's Xdmf3 readers need) and
+// holding the same values as the frame's row of /frames; a frame past them is named by a
+// HyperSlab. The root and the frame datasets say their units.
+TEST(ResultsWriter, FrameViewsNameEachFrameAsAWholeDataset) {
+  TestData d = two_tets();
+  const fs::path dir = test_dir("views");
+  {
+    ResultsWriter w(dir, d.mesh(), ResultsOptions{.scene_digest = "abc", .expected_frames = 2});
+    for (int k = 0; k < 3; ++k) {
+      d.fill(k);
+      w.write_frame(0.5 * k, d.fields());
+    }
+    w.close(true);
+  }
+  const std::string text = read_text(dir / "results.xdmf");
+  const XdmfInfo x = parse_xdmf(text);
+  EXPECT_EQ(x.grids, 3u);
+  ASSERT_EQ(x.slab_frames.size(), 6u);  // frame 2 only
+  for (long f : x.slab_frames) EXPECT_EQ(f, 2);
+  for (const char* field : {"displacement", "velocity", "stress", "von_mises", "pressure",
+                            "equivalent_plastic_strain"}) {
+    for (const char* frame : {"000000", "000001"}) {
+      const std::string path = std::string("/frame_views/") + frame + "/" + field;
+      EXPECT_NE(text.find("Format=\"HDF\">results.h5:" + path + "<"), std::string::npos) << path;
+    }
+    EXPECT_EQ(text.find(std::string("/frame_views/000002/") + field), std::string::npos);
+  }
+  H5 file{H5Fopen((dir / "results.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose};
+  ASSERT_GE(file.id, 0);
+  for (long k = 0; k < 2; ++k) {
+    const std::string base = "/frame_views/00000" + std::to_string(k) + "/";
+    for (const char* field : {"displacement", "stress", "equivalent_plastic_strain"}) {
+      const std::string view = base + field, row = std::string("/frames/") + field;
+      EXPECT_EQ(read<double>(file.id, view.c_str()), read<double>(file.id, row.c_str(), k)) << view;
+    }
+    EXPECT_EQ(dims_of(file.id, (base + "displacement").c_str()),
+              (std::vector<hsize_t>{d.nodes(), 3}));
+    EXPECT_EQ(dims_of(file.id, (base + "stress").c_str()), (std::vector<hsize_t>{2, 9}));
+    EXPECT_EQ(dims_of(file.id, (base + "von_mises").c_str()), (std::vector<hsize_t>{2}));
+  }
+  EXPECT_EQ(read<double>(file.id, "/frame_views/000001/displacement")[0], TestData::disp(1, 0));
+  EXPECT_LE(H5Lexists(file.id, "/frame_views/000002", H5P_DEFAULT), 0);
+  EXPECT_EQ(read_string_attribute(file.id, "units"), "SI: m, s, kg, Pa, N, J");
+  EXPECT_EQ(read_string_attribute(file.id, "scene_digest"), "abc");
+  EXPECT_EQ(read_string_attribute(file.id, "femdem_version").rfind("0.", 0), 0u);
+  EXPECT_NE(read_string_attribute(file.id, "node_order").find("0-1 1-2 2-0 0-3 1-3 2-3"),
+            std::string::npos);
+  const std::map<std::string, std::string> units = {
+      {"displacement", "m"}, {"velocity", "m/s"}, {"stress", "Pa"},
+      {"von_mises", "Pa"},   {"pressure", "Pa"},  {"equivalent_plastic_strain", "1"}};
+  for (const auto& [field, unit] : units) {
+    H5 ds{H5Dopen2(file.id, ("/frames/" + field).c_str(), H5P_DEFAULT), H5Dclose};
+    EXPECT_EQ(read_string_attribute(ds.id, "unit"), unit) << field;
+  }
+}
+
 TEST(ResultsWriter, IncompleteCloseAndDestructorLeaveCompleteZero) {
   TestData d = two_tets();
   d.fill(0);
@@ -374,7 +440,7 @@ TEST(ResultsWriter, KilledWriterLeavesReadableFrames) {
     if (pid == 0) {
       try {
         TestData d = proto;
-        ResultsWriter w(dir, d.mesh());
+        ResultsWriter w(dir, d.mesh(), ResultsOptions{.expected_frames = 300});
         for (int k = 0; k < 300; ++k) {
           d.fill(k);
           w.write_frame(1e-3 * k, d.fields());
@@ -417,6 +483,11 @@ TEST(ResultsWriter, KilledWriterLeavesReadableFrames) {
     for (std::size_t k = 0; k < time.size(); ++k) {
       expect_frame(file.id, proto, static_cast<long>(k));
     }
+    // ... and so do the views results.xdmf names for its last frame
+    char last[64];
+    std::snprintf(last, sizeof last, "/frame_views/%06zu/displacement", x.grids - 1);
+    EXPECT_EQ(read<double>(file.id, last),
+              read<double>(file.id, "/frames/displacement", static_cast<long>(x.grids - 1)));
     std::printf("[ trial %d ] killed with %zu frames in results.xdmf, %zu in /frames/time\n", trial,
                 x.grids, time.size());
     fs::remove_all(dir);
@@ -427,7 +498,13 @@ TEST(ResultsWriter, KilledWriterLeavesReadableFrames) {
 TEST(ResultsWriter, TimePerFrame100kElements) {
   TestData d = big_mesh(100000);
   const fs::path dir = test_dir("speed");
-  ResultsWriter w(dir, d.mesh());
+  const std::int64_t views = 2000;
+  const auto c0 = std::chrono::steady_clock::now();
+  ResultsWriter w(dir, d.mesh(), ResultsOptions{.expected_frames = views});
+  const double create_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
+  std::printf("[ measure ] file with the mesh and the views of %lld frames made in %.2f s\n",
+              static_cast<long long>(views), create_s);
   d.fill(0);
   const int frames = 10;
   const auto t0 = std::chrono::steady_clock::now();

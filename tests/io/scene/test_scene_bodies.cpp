@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Scene reader, [[bodies]] and their meshes: bad bodies and mesh sources name file, line and
-// key (CAD and gmsh files included), relative mesh paths, rotation and position.
+// key (CAD and gmsh files included), relative mesh paths, rotation and position, gmsh physical
+// volumes as bodies and physical surfaces and points as the node sets of constraints.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -152,6 +153,74 @@ TEST(SceneReader, RotationThenPositionPlaceTheGeneratedMesh) {
       worst = std::max(worst, (mesh.nodes[n] - (c.turn(ref.nodes[n]) + pos)).norm());
     EXPECT_LT(worst, 1e-12);
   }
+}
+
+// Two bodies from the one gmsh file with two physical volumes (tests/data/gmsh/two_blocks.geo),
+// each selected by `physical`; a constraint on the physical surface "left_bottom".
+std::string two_blocks_scene(const std::string& left_mesh, const std::string& region) {
+  const std::string file = std::string(FEMDEM_SOURCE_DIR) + "/tests/data/gmsh/two_blocks_bin41.msh";
+  return "[simulation]\nend_time = 1e-3\n"
+         "[[materials]]\nname = \"steel\"\nmodel = \"elastic\"\ndensity = 7800\n"
+         "youngs_modulus = 200e9\npoisson_ratio = 0.3\n"
+         "[[bodies]]\nname = \"a\"\nmaterial = \"steel\"\nmesh = { file = \"" +
+         file + "\"" + left_mesh +
+         " }\n"
+         "[[bodies]]\nname = \"b\"\nmaterial = \"steel\"\nmesh = { file = \"" +
+         file +
+         "\", physical = \"right\" }\n"
+         "[[constraints]]\nbody = \"a\"\nregion = " +
+         region + "\nfix = [\"x\", \"y\", \"z\"]\n";
+}
+
+TEST(SceneReader, GmshPhysicalVolumesAreBodiesAndSurfacesNodeSets) {
+  const femdem::SceneFile s = load_scene(
+      write_file(tmp_dir() / "physical.toml",
+                 two_blocks_scene(", physical = \"left\"", R"({ physical = "left_bottom" })")));
+  ASSERT_EQ(s.model.bodies.size(), 2u);
+  for (const auto& [body, x0] : {std::pair{0, 0.0}, std::pair{1, 2.0}}) {
+    const femdem::Tet10Mesh& m = s.model.bodies[static_cast<std::size_t>(body)].mesh;
+    EXPECT_FALSE(m.elements.empty());
+    for (const Vec3& p : m.nodes) {
+      EXPECT_GE(p.x(), x0 - 1e-9);
+      EXPECT_LE(p.x(), x0 + 1 + 1e-9);
+    }
+  }
+  ASSERT_EQ(s.model.constraints.size(), 1u);
+  const femdem::RegionSpec& r = s.model.constraints[0].region;
+  EXPECT_EQ(r.kind, femdem::RegionSpec::Kind::Nodes);
+  EXPECT_EQ(r.node_set, "left_bottom");
+  // exactly the left body's nodes on z = 0
+  const femdem::Tet10Mesh& a = s.model.bodies[0].mesh;
+  std::vector<std::int32_t> on_bottom;
+  for (std::size_t n = 0; n < a.nodes.size(); ++n)
+    if (std::abs(a.nodes[n].z()) < 1e-12) on_bottom.push_back(static_cast<std::int32_t>(n));
+  EXPECT_EQ(r.nodes, on_bottom);
+}
+
+TEST(SceneReader, GmshFileWithSeveralVolumesNeedsOneChosen) {
+  const auto message = [](const std::string& name, const std::string& left,
+                          const std::string& region, const std::string& key) {
+    try {
+      load_scene(write_file(tmp_dir() / (name + ".toml"), two_blocks_scene(left, region)));
+      ADD_FAILURE() << name << ": no InputError";
+      return std::string();
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.key, key) << e.what();
+      EXPECT_GT(e.line, 0) << e.what();
+      return std::string(e.what());
+    }
+  };
+  EXPECT_NE(message("no_volume", "", R"("all")", "bodies.a.mesh.file")
+                .find("holds 2 physical volumes (left, right): choose"),
+            std::string::npos);
+  EXPECT_NE(message("typo_volume", ", physical = \"lft\"", R"("all")", "bodies.a.mesh.physical")
+                .find("did you mean 'left'?"),
+            std::string::npos);
+  const std::string sets =
+      message("typo_set", ", physical = \"left\"", R"({ physical = "right_top" })",
+              "constraints[0].region.physical");
+  EXPECT_NE(sets.find("body 'a' has no node set 'right_top'"), std::string::npos) << sets;
+  EXPECT_NE(sets.find("its node sets: left_top_corner, left_bottom"), std::string::npos) << sets;
 }
 
 }  // namespace

@@ -3,7 +3,9 @@
 // When a run writes a history row and a results frame, and how long its last steps are so that
 // it lands on end_time exactly. Times within 1e-9 end_time of a due time count as due, so
 // round-off in the accumulated time neither skips nor doubles an output.
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include "engine/state_archive.hpp"
 
 namespace femdem {
@@ -27,6 +29,12 @@ class OutputSchedule {
   }
   void frame_written(double t) {
     while (next_frame_ <= t + eps_) next_frame_ += frame_interval_;
+  }
+  // At most how many frames the run writes after time t (one per interval, one at the end):
+  // what the results writer makes its per-frame views for.
+  std::int64_t frames_after(double t) const {
+    const double n = std::floor(std::max(0.0, end_ - t) / frame_interval_ + 1e-6);
+    return static_cast<std::int64_t>(std::min(n, 1e9)) + 1;
   }
   // The largest step the run may take from t when the stable step is dt: unlimited, except
   // that the last one or two steps split what remains rather than overshoot end_time.

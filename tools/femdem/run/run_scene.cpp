@@ -325,15 +325,19 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
     log_file.emplace(out / "run.log", options.quiet);
     write_log_header(*log_file, scene, options);
     say_model(*log_file, scene, sim, threads);
-    results.emplace(out, mesh, ResultsOptions{.scene_digest = digest});
+    results.emplace(out, mesh,
+                    ResultsOptions{.scene_digest = digest,
+                                   .expected_frames = 1 + schedule.frames_after(sim.time())});
     history.emplace(out / "history.csv", history_columns(layout));
   } else {
     const HistoryWriter::ContinueAt at{counts.history_bytes, counts.history_rows};
     lock.emplace(out, options.command_line);
     try {
       HistoryWriter::check_continuable(out / "history.csv", history_columns(layout), at);
-      results.emplace(out, mesh, ResultsWriter::ContinueFrom{counts.frames},
-                      ResultsOptions{.scene_digest = digest});
+      results.emplace(
+          out, mesh, ResultsWriter::ContinueFrom{counts.frames},
+          ResultsOptions{.scene_digest = digest,
+                         .expected_frames = counts.frames + schedule.frames_after(sim.time())});
     } catch (const std::runtime_error& e) {
       throw InputError(std::string("cannot resume: ") + e.what(), out.string());
     }
