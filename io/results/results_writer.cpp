@@ -23,6 +23,7 @@ namespace {
 
 constexpr const char* kH5Name = "results.h5";
 constexpr const char* kXdmfName = "results.xdmf";
+constexpr const char* kWallsXdmfName = "walls.xdmf";
 constexpr std::size_t kChunkBytes = std::size_t{1} << 20;  // target size of one frame chunk
 constexpr hsize_t kTimeChunk = 1024;
 
@@ -47,13 +48,16 @@ struct FrameDataset {
 }  // namespace
 
 struct ResultsWriter::Impl {
-  std::filesystem::path folder, h5_path, xdmf_path;
+  std::filesystem::path folder, h5_path, xdmf_path, walls_xdmf_path;
   ResultsOptions options;
   hsize_t nodes = 0, elements = 0;
   Handle file;
   Handle time_dset;
   std::vector<FrameDataset> fields;  // displacement, velocity, stress, von_mises, pressure, eps
-  std::vector<double> stress9;       // 9 per element, reused every frame
+  std::vector<ResultsWall> walls;
+  std::vector<FrameDataset> wall_fields;  // /walls/displacement, /walls/force (with walls)
+  std::string walls_frames;               // the Grid elements of walls.xdmf so far
+  std::vector<double> stress9;            // 9 per element, reused every frame
   std::int64_t frames = 0;
   std::int64_t views = 0;   // frames 0..views-1 have /frame_views
   std::string xdmf_frames;  // the Grid elements of all frames written so far
@@ -113,6 +117,7 @@ struct ResultsWriter::Impl {
     folder = dir;
     h5_path = dir / kH5Name;
     xdmf_path = dir / kXdmfName;
+    walls_xdmf_path = dir / kWallsXdmfName;
     options = std::move(o);
     set_mesh(mesh);
   }
@@ -140,6 +145,7 @@ struct ResultsWriter::Impl {
       }
     }
     stress9.resize(9 * elements);
+    walls.assign(mesh.walls.begin(), mesh.walls.end());
   }
 
   void list_fields() {
@@ -149,6 +155,80 @@ struct ResultsWriter::Impl {
     fields.push_back({"von_mises", false, elements, 1, "Scalar", "Pa", {}});
     fields.push_back({"pressure", false, elements, 1, "Scalar", "Pa", {}});
     fields.push_back({"equivalent_plastic_strain", false, elements, 1, "Scalar", "1", {}});
+    if (!walls.empty()) {
+      const hsize_t w = walls.size();
+      wall_fields.push_back({"displacement", false, w, 3, "Vector", "m", {}});
+      wall_fields.push_back({"force", false, w, 3, "Vector", "N", {}});
+    }
+  }
+
+  // walls.xdmf: the walls' quadrilaterals where they are at each frame, numbers inline.
+  std::string walls_xdmf_text() const {
+    std::string s = "<?xml version=\"1.0\" ?>\n<!-- femdem walls: ";
+    s += std::to_string(frames);
+    s += " frames, each wall a rectangle where it is at that time; open beside results.xdmf -->\n";
+    s += "<Xdmf Version=\"3.0\">\n  <Domain>\n";
+    s += "    <Grid Name=\"walls\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    s += walls_frames;
+    s += "    </Grid>\n  </Domain>\n</Xdmf>\n";
+    return s;
+  }
+
+  // Appends frame `frames - 1` of walls.xdmf: displacement and force 3 per wall.
+  void append_walls_frame(double time, const double* displacement, const double* force) {
+    const std::size_t w = walls.size();
+    const std::string nw = std::to_string(w);
+    std::string& s = walls_frames;
+    char name[40];
+    std::snprintf(name, sizeof name, "walls_%06lld", static_cast<long long>(frames - 1));
+    s += "      <Grid Name=\"";
+    s += name;
+    s += "\" GridType=\"Uniform\">\n";
+    s += "        <Time Value=\"" + fmt_double(time) + "\"/>\n";
+    s += "        <Topology TopologyType=\"Quadrilateral\" NumberOfElements=\"" + nw + "\">\n";
+    s += "          <DataItem Dimensions=\"" + nw +
+         " 4\" NumberType=\"Int\" Precision=\"4\" Format=\"XML\">";
+    for (std::size_t i = 0; i < 4 * w; ++i) {
+      if (i) s += ' ';
+      s += std::to_string(i);
+    }
+    s += "</DataItem>\n        </Topology>\n";
+    s += "        <Geometry GeometryType=\"XYZ\">\n";
+    s += "          <DataItem Dimensions=\"" + std::to_string(4 * w) +
+         " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">";
+    for (std::size_t i = 0; i < w; ++i)
+      for (const Vec3& c : walls[i].patch)
+        for (int k = 0; k < 3; ++k) {
+          if (i || &c != &walls[i].patch[0] || k) s += ' ';
+          s += fmt_double(c[k] + displacement[3 * i + k]);
+        }
+    s += "</DataItem>\n        </Geometry>\n";
+    s += "        <Attribute Name=\"wall\" AttributeType=\"Scalar\" Center=\"Cell\">\n";
+    s += "          <DataItem Dimensions=\"" + nw +
+         "\" NumberType=\"Int\" Precision=\"4\" Format=\"XML\">";
+    for (std::size_t i = 0; i < w; ++i) {
+      if (i) s += ' ';
+      s += std::to_string(i);
+    }
+    s += "</DataItem>\n        </Attribute>\n";
+    s += "        <Attribute Name=\"force\" AttributeType=\"Vector\" Center=\"Cell\">\n";
+    s += "          <DataItem Dimensions=\"" + nw +
+         " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">";
+    for (std::size_t i = 0; i < 3 * w; ++i) {
+      if (i) s += ' ';
+      s += fmt_double(force[i]);
+    }
+    s += "</DataItem>\n        </Attribute>\n      </Grid>\n";
+  }
+
+  // Replaces walls.xdmf (a folder of a run without walls keeps none).
+  void write_walls_xdmf(bool durable) const {
+    if (walls.empty()) {
+      std::error_code ec;
+      std::filesystem::remove(walls_xdmf_path, ec);
+      return;
+    }
+    write_file_atomically(walls_xdmf_path, walls_xdmf_text(), durable);
   }
 
   hid_t frame_file_type() const {
@@ -282,6 +362,25 @@ struct ResultsWriter::Impl {
         const hsize_t kept[3] = {static_cast<hsize_t>(keep), fd.rows, fd.comps};
         check_status(H5Dset_extent(d.get(), kept), "cutting " + path);
       }
+      // the walls' frames up to the checkpoint, for walls.xdmf
+      std::vector<std::vector<double>> wall_data;
+      if (!walls.empty() && H5Lexists(f, "walls", H5P_DEFAULT) <= 0)
+        throw std::runtime_error(h5_path.string() +
+                                 " holds no walls, the scene has some: not this run's results");
+      for (const FrameDataset& fd : wall_fields) {
+        const std::string path = std::string("/walls/") + fd.name;
+        Handle d(check(H5Dopen2(f, path.c_str(), H5P_DEFAULT), "opening " + path), H5Dclose);
+        const auto dims = extent(path.c_str(), 3);
+        if (dims[0] < static_cast<hsize_t>(keep) || dims[1] != fd.rows)
+          throw std::runtime_error(h5_path.string() + ": " + path +
+                                   " does not hold this run's walls and frames");
+        std::vector<double>& v = wall_data.emplace_back(dims[0] * fd.rows * fd.comps);
+        if (!v.empty())
+          check_status(H5Dread(d.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()),
+                       "reading " + path);
+        const hsize_t kept[3] = {static_cast<hsize_t>(keep), fd.rows, fd.comps};
+        check_status(H5Dset_extent(d.get(), kept), "cutting " + path);
+      }
       Handle attr(check(H5Aopen(f, "complete", H5P_DEFAULT), "opening 'complete'"), H5Aclose);
       const int zero = 0;
       check_status(H5Awrite(attr.get(), H5T_NATIVE_INT, &zero), "writing 'complete'");
@@ -290,10 +389,18 @@ struct ResultsWriter::Impl {
       create_views(f, wanted_views());
       if (file_rw.reset() < 0) fail("closing the file");
       xdmf_frames.clear();
-      for (frames = 1; frames <= keep; ++frames) append_xdmf_frame(times[frames - 1]);
+      walls_frames.clear();
+      const std::size_t per_frame = 3 * walls.size();
+      for (frames = 1; frames <= keep; ++frames) {
+        append_xdmf_frame(times[frames - 1]);
+        if (!walls.empty())
+          append_walls_frame(times[frames - 1], wall_data[0].data() + (frames - 1) * per_frame,
+                             wall_data[1].data() + (frames - 1) * per_frame);
+      }
       frames = keep;
     }
     write_file_atomically(xdmf_path, xdmf_text(), /*durable=*/false);
+    write_walls_xdmf(/*durable=*/false);
     file = Handle(check(H5Fopen(h5_path.c_str(), H5F_ACC_RDWR | H5F_ACC_SWMR_WRITE, H5P_DEFAULT),
                         "reopening for SWMR writing"),
                   H5Fclose);
@@ -305,11 +412,50 @@ struct ResultsWriter::Impl {
           check(H5Dopen2(file.get(), (std::string("/frames/") + fd.name).c_str(), dapl.get()),
                 std::string("opening /frames/") + fd.name),
           H5Dclose);
+    for (FrameDataset& fd : wall_fields)
+      fd.dset =
+          Handle(check(H5Dopen2(file.get(), (std::string("/walls/") + fd.name).c_str(), dapl.get()),
+                       std::string("opening /walls/") + fd.name),
+                 H5Dclose);
   }
 
-  void create_frame_dataset(hid_t group, FrameDataset& f) {
-    const hid_t file_type = frame_file_type();
-    const std::size_t value_size = options.single_precision ? 4 : 8;
+  // Fixed-length, NUL-terminated UTF-8 strings, one per entry.
+  void write_strings(hid_t group, const char* name, const std::vector<std::string>& values) {
+    std::size_t width = 1;
+    for (const std::string& b : values) width = std::max(width, b.size() + 1);
+    std::vector<char> chars(std::max<std::size_t>(1, width * values.size()), '\0');
+    for (std::size_t i = 0; i < values.size(); ++i)
+      std::copy(values[i].begin(), values[i].end(), chars.begin() + i * width);
+    Handle stype(check(H5Tcopy(H5T_C_S1), "H5Tcopy"), H5Tclose);
+    check_status(H5Tset_size(stype.get(), width), "H5Tset_size");
+    check_status(H5Tset_strpad(stype.get(), H5T_STR_NULLTERM), "H5Tset_strpad");
+    check_status(H5Tset_cset(stype.get(), H5T_CSET_UTF8), "H5Tset_cset");
+    const hsize_t dims[1] = {values.size()};
+    write_static(group, name, stype.get(), stype.get(), 1, dims, chars.data());
+  }
+
+  // /walls: names, normals and patches once, and the per-frame datasets.
+  void create_walls(hid_t root) {
+    Handle g(
+        check(H5Gcreate2(root, "walls", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), "creating /walls"),
+        H5Gclose);
+    std::vector<std::string> names;
+    std::vector<double> normal, patch;
+    for (const ResultsWall& w : walls) {
+      names.push_back(w.name);
+      normal.insert(normal.end(), {w.normal.x(), w.normal.y(), w.normal.z()});
+      for (const Vec3& c : w.patch) patch.insert(patch.end(), {c.x(), c.y(), c.z()});
+    }
+    write_strings(g.get(), "names", names);
+    const hsize_t ndims[2] = {walls.size(), 3}, pdims[3] = {walls.size(), 4, 3};
+    write_static(g.get(), "normal", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 2, ndims, normal.data());
+    write_static(g.get(), "patch", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 3, pdims, patch.data());
+    for (FrameDataset& f : wall_fields) create_frame_dataset(g.get(), f, H5T_IEEE_F64LE);
+  }
+
+  void create_frame_dataset(hid_t group, FrameDataset& f, hid_t type = H5I_INVALID_HID) {
+    const hid_t file_type = type >= 0 ? type : frame_file_type();
+    const std::size_t value_size = H5Tget_size(file_type);
     const int rank = f.rank();
     const hsize_t dims[3] = {0, f.rows, f.comps};
     const hsize_t maxdims[3] = {H5S_UNLIMITED, f.rows, f.comps};
@@ -323,7 +469,7 @@ struct ResultsWriter::Impl {
     const Handle dapl = frame_access();
     f.dset = Handle(check(H5Dcreate2(group, f.name, file_type, space.get(), H5P_DEFAULT, dcpl.get(),
                                      dapl.get()),
-                          std::string("creating /frames/") + f.name),
+                          std::string("creating ") + f.name),
                     H5Dclose);
     write_attribute_string(f.dset.get(), "unit", f.unit);
   }
@@ -429,6 +575,7 @@ ResultsWriter::ResultsWriter(const std::filesystem::path& folder, const ResultsM
   std::filesystem::create_directories(folder);
   // A stale results.xdmf must never point into the new results.h5.
   write_file_atomically(m.xdmf_path, m.xdmf_text(), /*durable=*/false);
+  m.write_walls_xdmf(/*durable=*/false);
 
   Handle fapl(m.check(H5Pcreate(H5P_FILE_ACCESS), "H5Pcreate"), H5Pclose);
   m.check_status(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_LATEST, H5F_LIBVER_LATEST),
@@ -455,19 +602,8 @@ ResultsWriter::ResultsWriter(const std::filesystem::path& folder, const ResultsM
                    mesh.node_body.data());
     m.write_static(g.get(), "element_body", H5T_STD_I32LE, H5T_NATIVE_INT32, 1, &m.elements,
                    mesh.element_body.data());
-    // Body names: fixed-length, NUL-terminated UTF-8 strings.
-    std::size_t width = 1;
-    for (const std::string& b : mesh.body_names) width = std::max(width, b.size() + 1);
-    std::vector<char> names(std::max<std::size_t>(1, width * mesh.body_names.size()), '\0');
-    for (std::size_t i = 0; i < mesh.body_names.size(); ++i) {
-      std::copy(mesh.body_names[i].begin(), mesh.body_names[i].end(), names.begin() + i * width);
-    }
-    Handle stype(m.check(H5Tcopy(H5T_C_S1), "H5Tcopy"), H5Tclose);
-    m.check_status(H5Tset_size(stype.get(), width), "H5Tset_size");
-    m.check_status(H5Tset_strpad(stype.get(), H5T_STR_NULLTERM), "H5Tset_strpad");
-    m.check_status(H5Tset_cset(stype.get(), H5T_CSET_UTF8), "H5Tset_cset");
-    const hsize_t bdims[1] = {mesh.body_names.size()};
-    m.write_static(g.get(), "body_names", stype.get(), stype.get(), 1, bdims, names.data());
+    m.write_strings(g.get(), "body_names",
+                    std::vector<std::string>(mesh.body_names.begin(), mesh.body_names.end()));
   }
 
   // --- frames ---
@@ -487,6 +623,7 @@ ResultsWriter::ResultsWriter(const std::filesystem::path& folder, const ResultsM
     for (FrameDataset& f : m.fields) m.create_frame_dataset(g.get(), f);
     m.write_attribute_string(m.fields[2].dset.get(), "components", "xx xy xz yx yy yz zx zy zz");
   }
+  if (!m.walls.empty()) m.create_walls(root);
   m.create_views(root, m.wanted_views());
 
   // From here on the file stays valid whatever happens to this process.
@@ -529,6 +666,10 @@ void ResultsWriter::write_frame(double time, const FrameFields& f) {
   need(f.von_mises, m.elements, "von_mises");
   need(f.pressure, m.elements, "pressure");
   need(f.equivalent_plastic_strain, m.elements, "equivalent_plastic_strain");
+  if (!m.walls.empty()) {
+    need(f.wall_displacement, 3 * m.walls.size(), "wall_displacement");
+    need(f.wall_force, 3 * m.walls.size(), "wall_force");
+  }
 
   // Symmetric (xx yy zz xy yz xz) -> full row-major 3x3.
   const double* s6 = f.stress.data();
@@ -551,6 +692,14 @@ void ResultsWriter::write_frame(double time, const FrameFields& f) {
     FrameDataset& fd = m.fields[i];
     m.append(fd.dset.get(), fd.rank(), fd.rows, fd.comps, data[i], fd.name);
   }
+  if (!m.walls.empty()) {
+    const std::array<const double*, 2> wall_data = {f.wall_displacement.data(),
+                                                    f.wall_force.data()};
+    for (std::size_t i = 0; i < m.wall_fields.size(); ++i) {
+      FrameDataset& fd = m.wall_fields[i];
+      m.append(fd.dset.get(), fd.rank(), fd.rows, fd.comps, wall_data[i], fd.name);
+    }
+  }
   // The frame's data and chunk indices reach the file before /frames/time counts the frame.
   m.check_status(H5Fflush(m.file.get(), H5F_SCOPE_LOCAL), "H5Fflush");
   m.append(m.time_dset.get(), 1, 1, 1, &time, "time");
@@ -559,6 +708,10 @@ void ResultsWriter::write_frame(double time, const FrameFields& f) {
 
   m.append_xdmf_frame(time);
   write_file_atomically(m.xdmf_path, m.xdmf_text(), /*durable=*/false);
+  if (!m.walls.empty()) {
+    m.append_walls_frame(time, f.wall_displacement.data(), f.wall_force.data());
+    m.write_walls_xdmf(/*durable=*/false);
+  }
 }
 
 void ResultsWriter::close(bool complete) {
@@ -566,6 +719,7 @@ void ResultsWriter::close(bool complete) {
   if (!m.open) return;
   m.open = false;
   m.fields.clear();
+  m.wall_fields.clear();
   m.time_dset.reset();
   if (m.file.reset() < 0) m.fail("closing the file");
   if (complete) {
@@ -586,6 +740,7 @@ void ResultsWriter::close(bool complete) {
     ::close(fd);
   }
   write_file_atomically(m.xdmf_path, m.xdmf_text(), /*durable=*/true);
+  m.write_walls_xdmf(/*durable=*/true);
 }
 
 std::string results_scene_digest(const std::filesystem::path& folder) {
@@ -610,6 +765,9 @@ std::filesystem::path ResultsWriter::h5_path() const {
 }
 std::filesystem::path ResultsWriter::xdmf_path() const {
   return impl_->xdmf_path;
+}
+std::filesystem::path ResultsWriter::walls_xdmf_path() const {
+  return impl_->walls_xdmf_path;
 }
 
 }  // namespace femdem

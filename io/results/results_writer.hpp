@@ -21,6 +21,12 @@
 //   /frames/von_mises      [frames, elements]
 //   /frames/pressure       [frames, elements]
 //   /frames/equivalent_plastic_strain [frames, elements]
+//   /walls/names           [walls]         fixed-length UTF-8 strings (only when there are walls)
+//   /walls/normal          [walls, 3]      float64, unit normals (towards the bodies)
+//   /walls/patch           [walls, 4, 3]   float64, the rectangle drawn for each wall at t = 0
+//                                          (io/results/wall_patch.hpp)
+//   /walls/displacement    [frames, walls, 3]  float64, each wall's translation since t = 0
+//   /walls/force           [frames, walls, 3]  float64, the force the bodies exert on it, N
 //   /frame_views/NNNNNN/<field>  one frame of each field above as a dataset of its own
 //                          ([nodes, 3], [elements, 9], [elements]): HDF5 virtual datasets onto
 //                          row NNNNNN of /frames/<field>, no data of their own
@@ -46,6 +52,11 @@
 // coordinates as geometry and the frame's views as attributes. The deformed shape is shown by
 // ParaView's "Warp By Vector" filter on `displacement` (scale factor 1). Stress is declared as
 // a 9-component "Tensor" because XDMF readers disagree on the component order of "Tensor6".
+//
+// walls.xdmf (only when there are walls; ParaView opens it beside results.xdmf): the same
+// frames, each wall a quadrilateral where it is at that time (no warp needed), with the cell
+// fields `wall` (index) and `force`. Its numbers are inline XML, so it reads anywhere.
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -56,12 +67,19 @@
 
 namespace femdem {
 
+struct ResultsWall {
+  std::string name;
+  Vec3 normal = Vec3(0, 0, 1);
+  std::array<Vec3, 4> patch{};  // corners at t = 0 (io/results/wall_patch.hpp)
+};
+
 struct ResultsMesh {
   std::span<const double> coordinates;         // 3 per node, reference
   std::span<const Tet10> connectivity;         // per element
   std::span<const std::int32_t> node_body;     // per node
   std::span<const std::int32_t> element_body;  // per element
   std::span<const std::string> body_names;     // per body
+  std::span<const ResultsWall> walls = {};     // per rigid wall
 };
 
 struct FrameFields {
@@ -71,6 +89,8 @@ struct FrameFields {
   std::span<const double> von_mises;                  // 1 per element
   std::span<const double> pressure;                   // 1 per element
   std::span<const double> equivalent_plastic_strain;  // 1 per element
+  std::span<const double> wall_displacement = {};     // 3 per wall
+  std::span<const double> wall_force = {};            // 3 per wall
 };
 
 struct ResultsOptions {
@@ -123,6 +143,7 @@ class ResultsWriter {
   bool is_open() const;
   std::filesystem::path h5_path() const;
   std::filesystem::path xdmf_path() const;
+  std::filesystem::path walls_xdmf_path() const;
 
  private:
   struct Impl;

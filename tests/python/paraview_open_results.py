@@ -5,7 +5,9 @@ legacy XDMF reader, and checks what each shows against the expectations in EXPEC
 (written by test_paraview.py from results.h5): the time steps, every field with its range in the
 last frame, quadratic tetrahedra. Renders the last frame, warped by its displacement, to PNG.
 
-    pvbatch paraview_open_results.py RESULTS_XDMF EXPECTED_JSON OUT_PNG
+    pvbatch paraview_open_results.py RESULTS_XDMF EXPECTED_JSON OUT_PNG [WALLS_XDMF WALLS]
+With WALLS_XDMF, also opens that walls.xdmf with the default reader: WALLS quadrilaterals with
+the cell fields `wall` and `force`, drawn beside the bodies in the PNG.
 Prints one line per reader and exits 1 on the first reader that does not show everything.
 """
 import json
@@ -17,6 +19,7 @@ from paraview.simple import (ColorBy, GetActiveViewOrCreate, OpenDataFile, Rende
                              Xdmf3ReaderS, Xdmf3ReaderT)
 
 VTK_QUADRATIC_TETRA = 24
+VTK_QUAD = 9
 
 
 def first_grid(data):
@@ -62,6 +65,24 @@ def check(label, reader, expected):
     return times[-1]
 
 
+def check_walls(xdmf, count, times):
+    reader = OpenDataFile(xdmf)
+    reader.UpdatePipelineInformation()
+    if list(reader.TimestepValues) != times:
+        raise RuntimeError(f"walls: time steps {list(reader.TimestepValues)}, expected {times}")
+    reader.UpdatePipeline(times[-1])
+    grid = first_grid(servermanager.Fetch(reader))
+    if grid.GetNumberOfCells() != count or grid.GetCellType(0) != VTK_QUAD:
+        raise RuntimeError(f"walls: {grid.GetNumberOfCells()} cells of type {grid.GetCellType(0)}")
+    for name, comps in (("wall", 1), ("force", 3)):
+        a = grid.GetCellData().GetArray(name)
+        if a is None or a.GetNumberOfComponents() != comps:
+            raise RuntimeError(f"walls: no cell array {name} of {comps} components")
+    print(f"walls ({reader.GetXMLName()}): {len(times)} steps, {count} quadrilaterals, "
+          "cell wall and force", flush=True)
+    return reader
+
+
 def main():
     xdmf, expected_json, png = sys.argv[1:4]
     with open(expected_json) as f:
@@ -78,6 +99,9 @@ def main():
     shown = Show(warp, view)
     ColorBy(shown, ("POINTS", "velocity", "Magnitude"))
     shown.RescaleTransferFunctionToDataRange(True)
+    if len(sys.argv) > 5:
+        walls = check_walls(sys.argv[4], int(sys.argv[5]), expected["times"])
+        Show(walls, view).Opacity = 0.3
     view.CameraPosition = [5.0, -20.0, 8.0]
     view.CameraFocalPoint = [5.0, 0.5, 0.5]
     view.CameraViewUp = [0.0, 0.0, 1.0]

@@ -76,5 +76,48 @@ class MeshioReadsEveryFrame(unittest.TestCase):
             self.assertGreater(np.abs(frames["displacement"][-1]).max(), 0.0)
 
 
+@unittest.skipUnless(os.environ.get("FEMDEM_EXE"), "set FEMDEM_EXE to a femdem program")
+class MeshioReadsTheWalls(unittest.TestCase):
+    """walls.xdmf of a short closed-die run (six walls, the punch moving): meshio's reading of
+    each wall's quadrilateral and force equals what femdem's Python reader gives from results.h5
+    (patch + displacement)."""
+
+    def test_walls_xdmf_equals_results_h5(self):
+        import meshio
+        import numpy as np
+
+        sys.path.insert(0, os.path.join(ROOT, "tools", "python"))
+        import femdem
+
+        with tempfile.TemporaryDirectory(prefix="femdem_meshio_walls_") as tmp:
+            out = os.path.join(tmp, "die")
+            p = subprocess.run([os.environ["FEMDEM_EXE"], "run",
+                                os.path.join(ROOT, "scenes", "closed_die_cube.toml"), "--out",
+                                out, "--quiet", "--threads", "1",
+                                "--set", "simulation.end_time=4e-5",
+                                "--set", "simulation.output_interval=1e-5"],
+                               capture_output=True, text=True, timeout=300)
+            self.assertEqual(p.returncode, 0, p.stdout + p.stderr)
+            with femdem.Results(out) as r, \
+                    meshio.xdmf.TimeSeriesReader(os.path.join(out, "walls.xdmf")) as reader:
+                self.assertEqual(len(r.wall_names), 6)
+                points, cells = reader.read_points_cells()
+                self.assertEqual(cells[0].type, "quad")
+                self.assertEqual(len(cells[0].data), 6)
+                self.assertEqual(reader.num_steps, r.frame_count)
+                moved = 0.0
+                for k in range(reader.num_steps):
+                    t, point_data, cell_data = reader.read_data(k)
+                    self.assertEqual(t, r.times[k])
+                    np.testing.assert_array_equal(cell_data["force"][0], r.wall_force(k))
+                    np.testing.assert_array_equal(cell_data["wall"][0], np.arange(6))
+                    moved = max(moved, float(np.abs(r.wall_patch(k) - r.wall_patch(0)).max()))
+                # meshio gives the first frame's geometry (its mesh grid): the walls at t = 0
+                np.testing.assert_array_equal(points, r.wall_patch(0).reshape(-1, 3))
+                self.assertGreater(moved, 0.0)  # the punch moves
+                # the punch presses the cube: equal and opposite forces on punch and floor
+                self.assertGreater(np.abs(r.wall_force(-1)).max(), 0.0)
+
+
 if __name__ == "__main__":
     sys.exit(unittest.main())

@@ -366,6 +366,64 @@ TEST(ResultsWriter, FrameViewsNameEachFrameAsAWholeDataset) {
   }
 }
 
+// Walls: names, normals and patches once, each frame's displacement and force in /walls, and
+// walls.xdmf with each wall's quadrilateral where it is at that frame. A run without walls
+// leaves no walls.xdmf, not even a stale one.
+TEST(ResultsWriter, WallsAreWrittenAsMovingQuadrilaterals) {
+  TestData d = two_tets();
+  const fs::path dir = test_dir("walls");
+  std::vector<ResultsWall> walls = {
+      {"floor", Vec3(0, 0, 1), {Vec3(-1, -1, 0), Vec3(2, -1, 0), Vec3(2, 2, 0), Vec3(-1, 2, 0)}},
+      {"punch", Vec3(0, 0, -1), {Vec3(-1, 2, 1), Vec3(2, 2, 1), Vec3(2, -1, 1), Vec3(-1, -1, 1)}}};
+  ResultsMesh mesh = d.mesh();
+  mesh.walls = walls;
+  {
+    ResultsWriter w(dir, mesh);
+    for (int k = 0; k < 3; ++k) {
+      d.fill(k);
+      const std::vector<double> disp = {0, 0, 0, 0, 0, -0.1 * k};
+      const std::vector<double> force = {0, 0, -10.0 * k, 0, 0, 10.0 * k};
+      FrameFields f = d.fields();
+      f.wall_displacement = disp;
+      f.wall_force = force;
+      w.write_frame(0.5 * k, f);
+    }
+    FrameFields short_walls = d.fields();  // the wall fields are required with walls
+    EXPECT_THROW(w.write_frame(2.0, short_walls), std::invalid_argument);
+    w.close(true);
+  }
+  {
+    H5 file{H5Fopen((dir / "results.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose};
+    ASSERT_GE(file.id, 0);
+    EXPECT_EQ(dims_of(file.id, "/walls/patch"), (std::vector<hsize_t>{2, 4, 3}));
+    EXPECT_EQ(read<double>(file.id, "/walls/normal"), (std::vector<double>{0, 0, 1, 0, 0, -1}));
+    EXPECT_EQ(read<double>(file.id, "/walls/displacement", 2),
+              (std::vector<double>{0, 0, 0, 0, 0, -0.2}));
+    EXPECT_EQ(read<double>(file.id, "/walls/force", 1), (std::vector<double>{0, 0, -10, 0, 0, 10}));
+    {
+      H5 ds{H5Dopen2(file.id, "/walls/force", H5P_DEFAULT), H5Dclose};
+      EXPECT_EQ(read_string_attribute(ds.id, "unit"), "N");
+    }
+  }  // (closed: a writer cannot replace a file open elsewhere in this process)
+  const std::string text = read_text(dir / "walls.xdmf");
+  const std::regex grid_re(R"(<Grid Name="walls_\d+" GridType="Uniform">)");
+  EXPECT_EQ(std::distance(std::sregex_iterator(text.begin(), text.end(), grid_re),
+                          std::sregex_iterator()),
+            3);
+  EXPECT_NE(text.find("TopologyType=\"Quadrilateral\" NumberOfElements=\"2\""), std::string::npos);
+  // the punch's first corner in the last frame: (-1, 2, 1) moved by -0.2 in z
+  EXPECT_NE(text.find("-1 2 0.80000000000000004 2 2 0.80000000000000004"), std::string::npos)
+      << text;
+  EXPECT_NE(text.find(">0 0 -20 0 0 20</DataItem>"), std::string::npos) << text;
+
+  // the same folder reused by a run without walls: the stale walls.xdmf goes
+  {
+    ResultsWriter w(dir, d.mesh());
+    w.close(true);
+  }
+  EXPECT_FALSE(fs::exists(dir / "walls.xdmf"));
+}
+
 TEST(ResultsWriter, IncompleteCloseAndDestructorLeaveCompleteZero) {
   TestData d = two_tets();
   d.fill(0);

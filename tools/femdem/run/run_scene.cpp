@@ -25,6 +25,7 @@
 #include "io/results/history_writer.hpp"
 #include "io/results/results_writer.hpp"
 #include "io/results/summary_writer.hpp"
+#include "io/results/wall_patch.hpp"
 #include "io/scene/scene_digest.hpp"
 #include "tools/femdem/run/compaction_curve.hpp"
 #include "tools/femdem/run/memory_check.hpp"
@@ -311,7 +312,17 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
 
   // outputs: a new run replaces what an earlier run left in the folder; a resumed run cuts its
   // outputs back to the checkpoint (checking all of them before changing any)
-  const ResultsMesh mesh{m.X, m.conn, m.node_body, m.element_body, layout.bodies};
+  std::vector<ResultsWall> result_walls;
+  {
+    Vec3 lo = Vec3::Constant(HUGE_VAL), hi = Vec3::Constant(-HUGE_VAL);
+    for (std::size_t i = 0; i + 2 < m.X.size(); i += 3) {
+      const Vec3 p(m.X[i], m.X[i + 1], m.X[i + 2]);
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    for (const Wall& w : m.walls) result_walls.push_back({w.name, w.normal, wall_patch(w, lo, hi)});
+  }
+  const ResultsMesh mesh{m.X, m.conn, m.node_body, m.element_body, layout.bodies, result_walls};
   std::optional<ResultsWriter> results;
   std::optional<HistoryWriter> history;
   std::optional<RunLog> log_file;
@@ -350,12 +361,18 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
   RunLog& log = *log_file;
 
   std::vector<double> disp(m.X.size()), s6, vm, pr, ep, row;
+  std::vector<double> wall_disp(3 * m.walls.size()), wall_force(3 * m.walls.size());
   auto write_frame = [&] {
     // the rows up to this frame reach the file first: a killed run loses no row a frame has
     history->flush();
     for (std::size_t i = 0; i < disp.size(); ++i) disp[i] = m.x[i] - m.X[i];
     sim.element_stress(s6, vm, pr, ep);
-    results->write_frame(sim.time(), FrameFields{disp, m.v, s6, vm, pr, ep});
+    for (std::size_t w = 0; w < m.walls.size(); ++w)
+      for (int k = 0; k < 3; ++k) {
+        wall_disp[3 * w + k] = m.walls[w].point[k] - m.walls[w].point0[k];
+        wall_force[3 * w + k] = m.walls[w].force[k];
+      }
+    results->write_frame(sim.time(), FrameFields{disp, m.v, s6, vm, pr, ep, wall_disp, wall_force});
     schedule.frame_written(sim.time());
   };
   HistorySample sample;

@@ -10,7 +10,12 @@ interval (docs/OUTPUTS.md, "results.h5 / results.xdmf", which gives the layout).
     /frames/displacement [F,N,3], /frames/velocity [F,N,3]               node fields
     /frames/stress [F,E,9] (Cauchy, row-major 3x3), /frames/von_mises [F,E],
     /frames/pressure [F,E], /frames/equivalent_plastic_strain [F,E]     element fields
-    root attributes: complete (1 for a finished run), format, format_version
+    /walls/names [W], /walls/normal [W,3], /walls/patch [W,4,3]   the rigid walls (if any) and
+                               the rectangle drawn for each at t = 0
+    /walls/displacement [F,W,3], /walls/force [F,W,3]   each wall's translation and the force
+                               the bodies exert on it, per frame
+    root attributes: complete (1 for a finished run), format, format_version, femdem_version,
+    units, node_order, scene_digest
 The frame fields are float64 (float32 from a writer set to single precision) and are returned
 as stored.
 
@@ -156,6 +161,8 @@ class Results:
     def _count(self):
         frames = self.file["frames"]
         datasets = [frames[n] for n in frames]
+        if "walls" in self.file:
+            datasets += [self.file["walls"][n] for n in ("displacement", "force")]
         if self.file.swmr_mode:
             for d in datasets:
                 d.refresh()
@@ -217,6 +224,30 @@ class Results:
     def positions(self, frame=-1):
         """Deformed node positions [N,3] of a frame: coordinates + displacement."""
         return self.coordinates + self.field("displacement", frame)
+
+
+    # --- the walls
+
+    @property
+    def wall_names(self):
+        """The rigid walls' names ([] for a run without walls)."""
+        if "walls" not in self.file:
+            return []
+        return [_text(n) for n in self.file["walls"]["names"][()]]
+
+    @property
+    def wall_normals(self):
+        """The walls' unit normals [W,3], pointing towards the bodies."""
+        return self.file["walls"]["normal"][()]
+
+    def wall_patch(self, frame=-1):
+        """The rectangle drawn for each wall where it is at a frame: corners [W,4,3]."""
+        w = self.file["walls"]
+        return w["patch"][()] + w["displacement"][self._index(frame)][:, None, :]
+
+    def wall_force(self, frame=-1):
+        """The force the bodies exert on each wall at a frame [W,3], N."""
+        return self.file["walls"]["force"][self._index(frame)]
 
 
 def open_results(path_or_run_dir):
