@@ -23,8 +23,12 @@ std::string find_plot_script(const std::string& exe, const char* name) {
   if (fs::exists(fs::path(FEMDEM_TOOLS_DIR) / name, ec))
     return (fs::path(FEMDEM_TOOLS_DIR) / name).string();
 #endif
-  const fs::path near = fs::path(exe).parent_path() / ".." / "tools" / name;
-  if (fs::exists(near, ec)) return near.string();
+  // beside a build in the source tree, or installed (cmake --install: PREFIX/bin/femdem and
+  // PREFIX/share/femdem/tools)
+  for (const char* dir : {"../tools", "../share/femdem/tools"}) {
+    const fs::path near = fs::path(exe).parent_path() / dir / name;
+    if (fs::exists(near, ec)) return near.string();
+  }
   return {};
 }
 
