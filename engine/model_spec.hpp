@@ -51,6 +51,8 @@ struct SimulationSettings {
     return r > 1.0 ? r * r : 1.0;
   }
   double output_interval = 0.0;   // 0: end_time / 50
+  // [output] fields: the optional results fields to write (engine/output_fields.hpp)
+  std::vector<std::string> output_fields;
   double history_interval = 0.0;  // 0: output_interval / 20
   // Checkpoints (checkpoint.h5 in the output folder, for femdem resume): every this many
   // simulated seconds (0: not by simulated time) and every this many wall seconds (0: not by

@@ -42,7 +42,12 @@ struct FrameDataset {
   const char* xdmf_type;
   const char* unit;
   Handle dset;
+  // where write_frame takes the values from; a symmetric tensor comes as 6 (xx yy zz xy yz xz)
+  // and is stored as the full row-major 3x3
+  std::span<const double> FrameFields::*source = nullptr;
+  std::vector<double> full = {};  // the 3x3 rows of a symmetric tensor, reused every frame
   int rank() const { return comps > 1 ? 3 : 2; }
+  hsize_t given_comps() const { return comps == 9 ? 6 : comps; }
 };
 
 }  // namespace
@@ -57,7 +62,6 @@ struct ResultsWriter::Impl {
   std::vector<ResultsWall> walls;
   std::vector<FrameDataset> wall_fields;  // /walls/displacement, /walls/force (with walls)
   std::string walls_frames;               // the Grid elements of walls.xdmf so far
-  std::vector<double> stress9;            // 9 per element, reused every frame
   std::int64_t frames = 0;
   std::int64_t views = 0;   // frames 0..views-1 have /frame_views
   std::string xdmf_frames;  // the Grid elements of all frames written so far
@@ -144,21 +148,51 @@ struct ResultsWriter::Impl {
         }
       }
     }
-    stress9.resize(9 * elements);
     walls.assign(mesh.walls.begin(), mesh.walls.end());
   }
 
   void list_fields() {
-    fields.push_back({"displacement", true, nodes, 3, "Vector", "m", {}});
-    fields.push_back({"velocity", true, nodes, 3, "Vector", "m/s", {}});
-    fields.push_back({"stress", false, elements, 9, "Tensor", "Pa", {}});
-    fields.push_back({"von_mises", false, elements, 1, "Scalar", "Pa", {}});
-    fields.push_back({"pressure", false, elements, 1, "Scalar", "Pa", {}});
-    fields.push_back({"equivalent_plastic_strain", false, elements, 1, "Scalar", "1", {}});
+    using F = FrameFields;
+    fields.push_back({"displacement", true, nodes, 3, "Vector", "m", {}, &F::displacement});
+    fields.push_back({"velocity", true, nodes, 3, "Vector", "m/s", {}, &F::velocity});
+    fields.push_back({"stress", false, elements, 9, "Tensor", "Pa", {}, &F::stress});
+    fields.push_back({"von_mises", false, elements, 1, "Scalar", "Pa", {}, &F::von_mises});
+    fields.push_back({"pressure", false, elements, 1, "Scalar", "Pa", {}, &F::pressure});
+    fields.push_back({"equivalent_plastic_strain",
+                      false,
+                      elements,
+                      1,
+                      "Scalar",
+                      "1",
+                      {},
+                      &F::equivalent_plastic_strain});
+    const FrameDataset optional[] = {
+        {"log_strain", false, elements, 9, "Tensor", "1", {}, &F::log_strain},
+        {"nodal_stress", true, nodes, 9, "Tensor", "Pa", {}, &F::nodal_stress},
+        {"contact_force", true, nodes, 3, "Vector", "N", {}, &F::contact_force},
+        {"contact_pressure", true, nodes, 1, "Scalar", "Pa", {}, &F::contact_pressure},
+        {"body_velocity", true, nodes, 3, "Vector", "m/s", {}, &F::body_velocity}};
+    for (const std::string& name : options.optional_fields) {
+      const auto it = std::find_if(std::begin(optional), std::end(optional),
+                                   [&](const FrameDataset& d) { return d.name == name; });
+      if (it == std::end(optional))
+        throw std::invalid_argument("results: unknown optional field '" + name + "'");
+      fields.push_back({it->name,
+                        it->node_centred,
+                        it->rows,
+                        it->comps,
+                        it->xdmf_type,
+                        it->unit,
+                        {},
+                        it->source});
+    }
+    for (FrameDataset& fd : fields)
+      if (fd.comps == 9) fd.full.resize(9 * fd.rows);
     if (!walls.empty()) {
       const hsize_t w = walls.size();
-      wall_fields.push_back({"displacement", false, w, 3, "Vector", "m", {}});
-      wall_fields.push_back({"force", false, w, 3, "Vector", "N", {}});
+      wall_fields.push_back(
+          {"displacement", false, w, 3, "Vector", "m", {}, &F::wall_displacement});
+      wall_fields.push_back({"force", false, w, 3, "Vector", "N", {}, &F::wall_force});
     }
   }
 
@@ -621,7 +655,9 @@ ResultsWriter::ResultsWriter(const std::filesystem::path& folder, const ResultsM
                          H5Dclose);
     m.list_fields();
     for (FrameDataset& f : m.fields) m.create_frame_dataset(g.get(), f);
-    m.write_attribute_string(m.fields[2].dset.get(), "components", "xx xy xz yx yy yz zx zy zz");
+    for (FrameDataset& fd : m.fields)
+      if (fd.comps == 9)
+        m.write_attribute_string(fd.dset.get(), "components", "xx xy xz yx yy yz zx zy zz");
   }
   if (!m.walls.empty()) m.create_walls(root);
   m.create_views(root, m.wanted_views());
@@ -660,46 +696,33 @@ void ResultsWriter::write_frame(double time, const FrameFields& f) {
                                   std::to_string(n));
     }
   };
-  need(f.displacement, 3 * m.nodes, "displacement");
-  need(f.velocity, 3 * m.nodes, "velocity");
-  need(f.stress, 6 * m.elements, "stress");
-  need(f.von_mises, m.elements, "von_mises");
-  need(f.pressure, m.elements, "pressure");
-  need(f.equivalent_plastic_strain, m.elements, "equivalent_plastic_strain");
-  if (!m.walls.empty()) {
-    need(f.wall_displacement, 3 * m.walls.size(), "wall_displacement");
-    need(f.wall_force, 3 * m.walls.size(), "wall_force");
-  }
-
-  // Symmetric (xx yy zz xy yz xz) -> full row-major 3x3.
-  const double* s6 = f.stress.data();
-  double* s9 = m.stress9.data();
-  for (hsize_t e = 0; e < m.elements; ++e, s6 += 6, s9 += 9) {
-    s9[0] = s6[0];
-    s9[1] = s6[3];
-    s9[2] = s6[5];
-    s9[3] = s6[3];
-    s9[4] = s6[1];
-    s9[5] = s6[4];
-    s9[6] = s6[5];
-    s9[7] = s6[4];
-    s9[8] = s6[2];
-  }
-  const std::array<const double*, 6> data = {
-      f.displacement.data(), f.velocity.data(), m.stress9.data(),
-      f.von_mises.data(),    f.pressure.data(), f.equivalent_plastic_strain.data()};
-  for (std::size_t i = 0; i < m.fields.size(); ++i) {
-    FrameDataset& fd = m.fields[i];
-    m.append(fd.dset.get(), fd.rank(), fd.rows, fd.comps, data[i], fd.name);
-  }
-  if (!m.walls.empty()) {
-    const std::array<const double*, 2> wall_data = {f.wall_displacement.data(),
-                                                    f.wall_force.data()};
-    for (std::size_t i = 0; i < m.wall_fields.size(); ++i) {
-      FrameDataset& fd = m.wall_fields[i];
-      m.append(fd.dset.get(), fd.rank(), fd.rows, fd.comps, wall_data[i], fd.name);
+  for (const FrameDataset& fd : m.fields) need(f.*fd.source, fd.rows * fd.given_comps(), fd.name);
+  for (const FrameDataset& fd : m.wall_fields)
+    need(f.*fd.source, fd.rows * fd.given_comps(),
+         fd.source == &FrameFields::wall_force ? "wall_force" : "wall_displacement");
+  for (FrameDataset& fd : m.fields) {
+    const double* data = (f.*fd.source).data();
+    if (fd.comps == 9) {
+      // Symmetric (xx yy zz xy yz xz) -> full row-major 3x3.
+      const double* s6 = data;
+      double* s9 = fd.full.data();
+      for (hsize_t e = 0; e < fd.rows; ++e, s6 += 6, s9 += 9) {
+        s9[0] = s6[0];
+        s9[1] = s6[3];
+        s9[2] = s6[5];
+        s9[3] = s6[3];
+        s9[4] = s6[1];
+        s9[5] = s6[4];
+        s9[6] = s6[5];
+        s9[7] = s6[4];
+        s9[8] = s6[2];
+      }
+      data = fd.full.data();
     }
+    m.append(fd.dset.get(), fd.rank(), fd.rows, fd.comps, data, fd.name);
   }
+  for (FrameDataset& fd : m.wall_fields)
+    m.append(fd.dset.get(), fd.rank(), fd.rows, fd.comps, (f.*fd.source).data(), fd.name);
   // The frame's data and chunk indices reach the file before /frames/time counts the frame.
   m.check_status(H5Fflush(m.file.get(), H5F_SCOPE_LOCAL), "H5Fflush");
   m.append(m.time_dset.get(), 1, 1, 1, &time, "time");

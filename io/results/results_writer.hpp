@@ -62,6 +62,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "elements/tet10_mesh.hpp"
 
@@ -91,6 +92,13 @@ struct FrameFields {
   std::span<const double> equivalent_plastic_strain;  // 1 per element
   std::span<const double> wall_displacement = {};     // 3 per wall
   std::span<const double> wall_force = {};            // 3 per wall
+  // the optional fields (ResultsOptions::optional_fields; engine/output_fields.hpp), needed only
+  // when chosen
+  std::span<const double> log_strain = {};        // 6 per element: xx yy zz xy yz xz
+  std::span<const double> nodal_stress = {};      // 6 per node
+  std::span<const double> contact_force = {};     // 3 per node
+  std::span<const double> contact_pressure = {};  // 1 per node
+  std::span<const double> body_velocity = {};     // 3 per node
 };
 
 struct ResultsOptions {
@@ -99,6 +107,9 @@ struct ResultsOptions {
   // The frames the run expects to write (its schedule's count): /frame_views are made for this
   // many (at most kMaxFrameViews). 0: none (every frame is named by a HyperSlab).
   std::int64_t expected_frames = 0;
+  // Optional fields written besides the default ones: any of "log_strain", "nodal_stress",
+  // "contact_force", "contact_pressure", "body_velocity" (each a /frames dataset, named so).
+  std::vector<std::string> optional_fields = {};
 };
 
 // The most frames /frame_views are made for (6 small objects each, made before the run starts:

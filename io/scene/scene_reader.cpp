@@ -35,7 +35,7 @@ namespace scene {
 ModelSpec Reader::read(const toml::table& root, const std::string& stem, toml::table& resolved) {
   check_keys(root, "",
              {"title", "simulation", "materials", "bodies", "packings", "walls", "constraints",
-              "contact", "compaction"});
+              "contact", "compaction", "output"});
   ModelSpec spec;
   spec.title = opt_string(root, "title", "").value_or(stem);
   resolved.insert_or_assign("title", spec.title);
@@ -54,6 +54,8 @@ ModelSpec Reader::read(const toml::table& root, const std::string& stem, toml::t
   read_contact(root, spec, contact);
   toml::table compaction;
   read_compaction(root, spec, compaction, names);
+  toml::table output;
+  read_output(root, spec, output);
 
   resolved.insert_or_assign("simulation", std::move(sim));
   resolved.insert_or_assign("materials", std::move(materials));
@@ -63,6 +65,7 @@ ModelSpec Reader::read(const toml::table& root, const std::string& stem, toml::t
   if (!constraints.empty()) resolved.insert_or_assign("constraints", std::move(constraints));
   resolved.insert_or_assign("contact", std::move(contact));
   if (spec.compaction) resolved.insert_or_assign("compaction", std::move(compaction));
+  resolved.insert_or_assign("output", std::move(output));
   return spec;
 }
 

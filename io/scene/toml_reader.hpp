@@ -112,6 +112,7 @@ class Reader {
   void read_constraints(const toml::table& root, ModelSpec& spec, toml::array& out) const;
   RegionSpec read_region(const toml::table& c, const std::string& prefix, toml::table& out) const;
   void read_contact(const toml::table& root, ModelSpec& spec, toml::table& out) const;
+  void read_output(const toml::table& root, ModelSpec& spec, toml::table& out) const;
   // A law's name at t[key] (or `fallback`), checked against the registered `laws`.
   std::string law_name(const toml::table& t, std::string_view key, std::string_view fallback,
                        const std::vector<std::string>& laws) const;

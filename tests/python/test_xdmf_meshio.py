@@ -119,5 +119,68 @@ class MeshioReadsTheWalls(unittest.TestCase):
                 self.assertGreater(np.abs(r.wall_force(-1)).max(), 0.0)
 
 
+@unittest.skipUnless(os.environ.get("FEMDEM_EXE"), "set FEMDEM_EXE to a femdem program")
+class OptionalFieldsReadAndMeanWhatTheySay(unittest.TestCase):
+    """`[output] fields` with every optional field, on the closed die (a cube confined on five
+    sides and pressed by a punch: its stress is uniform): meshio reads each field of every frame
+    as results.h5 has it, and the contact pressure on the faces equals the stress normal to them
+    (the interior nodes of the top and of a side face within 1 % of -sigma_zz and -sigma_xx),
+    the nodal stress the element stress, the body velocity the mass-weighted mean velocity."""
+
+    FIELDS = ("log_strain", "nodal_stress", "contact_force", "contact_pressure",
+              "body_velocity")
+
+    def test_fields(self):
+        import h5py
+        import meshio
+        import numpy as np
+
+        with tempfile.TemporaryDirectory(prefix="femdem_fields_") as tmp:
+            out = os.path.join(tmp, "die")
+            fields = "[" + ",".join(f'"{f}"' for f in self.FIELDS) + "]"
+            p = subprocess.run([os.environ["FEMDEM_EXE"], "run",
+                                os.path.join(ROOT, "scenes", "closed_die_cube.toml"), "--out",
+                                out, "--quiet", "--threads", "1",
+                                "--set", "simulation.end_time=4e-5",
+                                "--set", "simulation.output_interval=1e-5",
+                                "--set", f"output.fields={fields}"],
+                               capture_output=True, text=True, timeout=300)
+            self.assertEqual(p.returncode, 0, p.stdout + p.stderr)
+            with h5py.File(os.path.join(out, "results.h5"), "r") as h5:
+                fr = {n: h5["frames"][n][()] for n in h5["frames"]}
+                X = h5["mesh/coordinates"][()]
+            with meshio.xdmf.TimeSeriesReader(os.path.join(out, "results.xdmf")) as reader:
+                reader.read_points_cells()
+                for k in range(reader.num_steps):
+                    _, point_data, cell_data = reader.read_data(k)
+                    np.testing.assert_array_equal(cell_data["log_strain"][0], fr["log_strain"][k])
+                    for name in ("nodal_stress", "contact_force", "contact_pressure",
+                                 "body_velocity"):
+                        np.testing.assert_array_equal(point_data[name], fr[name][k], name)
+            stress = fr["stress"][-1]
+            self.assertLess(np.ptp(stress[:, 8]), 0.02 * abs(stress[:, 8].mean()))  # near uniform
+            lo, hi = X.min(0), X.max(0)
+
+            def face_interior(axis, value):
+                on = np.abs(X[:, axis] - value) < 1e-9
+                for a in range(3):
+                    if a != axis:
+                        on &= (np.abs(X[:, a] - lo[a]) > 1e-9) & (np.abs(X[:, a] - hi[a]) > 1e-9)
+                return on
+
+            p = fr["contact_pressure"][-1]
+            for axis, component in ((2, 8), (0, 0)):
+                nodes = face_interior(axis, hi[axis])
+                expected = -stress[:, component].mean()
+                self.assertGreater(expected, 0.0)
+                np.testing.assert_allclose(p[nodes], expected, rtol=0.01)
+            np.testing.assert_allclose(fr["nodal_stress"][-1][:, 8], stress[:, 8].mean(),
+                                       rtol=0.02)
+            # a compressed cube: log strain zz negative, and the punch's force reaches the nodes
+            self.assertLess(fr["log_strain"][-1][:, 8].max(), 0.0)
+            self.assertGreater(np.abs(fr["contact_force"][-1]).max(), 0.0)
+            self.assertEqual(len(np.unique(fr["body_velocity"][-1], axis=0)), 1)  # one body
+
+
 if __name__ == "__main__":
     sys.exit(unittest.main())

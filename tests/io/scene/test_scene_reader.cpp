@@ -31,6 +31,9 @@ const std::vector<BadCase> kBadCases = {
   {"misplaced_key", 2, "[contact]", "", "simulation", 1, "[simulation] is missing"},
   {"unknown_section", 2, "[simulaton]", "", "simulaton", 2, "did you mean 'simulation'?"},
   {"toml_syntax_error", 3, "end_time = ", "", "", 3, "TOML syntax error"},
+  {"unknown_output_field", 0, "", "[output]\nfields = [\"log_strian\"]", "output.fields", 21, "did you mean 'log_strain'?"},
+  {"duplicate_output_field", 0, "", "[output]\nfields = [\"log_strain\", \"log_strain\"]", "output.fields", 21, "listed twice"},
+  {"unknown_output_key", 0, "", "[output]\nfeilds = []", "output.feilds", 21, "did you mean 'fields'?"},
 };
 // clang-format on
 

@@ -19,6 +19,7 @@
 #include "engine/compaction.hpp"
 #include "engine/errors.hpp"
 #include "engine/initial_overlap.hpp"
+#include "engine/output_fields.hpp"
 #include "engine/simulation.hpp"
 #include "femdem_version.hpp"
 #include "io/checkpoint/checkpoint_file.hpp"
@@ -338,7 +339,8 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
     say_model(*log_file, scene, sim, threads);
     results.emplace(out, mesh,
                     ResultsOptions{.scene_digest = digest,
-                                   .expected_frames = 1 + schedule.frames_after(sim.time())});
+                                   .expected_frames = 1 + schedule.frames_after(sim.time()),
+                                   .optional_fields = set.output_fields});
     history.emplace(out / "history.csv", history_columns(layout));
   } else {
     const HistoryWriter::ContinueAt at{counts.history_bytes, counts.history_rows};
@@ -348,7 +350,8 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
       results.emplace(
           out, mesh, ResultsWriter::ContinueFrom{counts.frames},
           ResultsOptions{.scene_digest = digest,
-                         .expected_frames = counts.frames + schedule.frames_after(sim.time())});
+                         .expected_frames = counts.frames + schedule.frames_after(sim.time()),
+                         .optional_fields = set.output_fields});
     } catch (const std::runtime_error& e) {
       throw InputError(std::string("cannot resume: ") + e.what(), out.string());
     }
@@ -362,6 +365,14 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
 
   std::vector<double> disp(m.X.size()), s6, vm, pr, ep, row;
   std::vector<double> wall_disp(3 * m.walls.size()), wall_force(3 * m.walls.size());
+  // the optional fields (engine/output_fields.hpp), computed only when the scene asks
+  const auto wants = [&](const char* name) {
+    return std::find(set.output_fields.begin(), set.output_fields.end(), name) !=
+           set.output_fields.end();
+  };
+  std::optional<OutputFields> optional_fields;
+  if (!set.output_fields.empty()) optional_fields.emplace(m);
+  std::vector<double> log_strain, nodal_stress, contact_pressure, body_velocity;
   auto write_frame = [&] {
     // the rows up to this frame reach the file first: a killed run loses no row a frame has
     history->flush();
@@ -372,7 +383,19 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
         wall_disp[3 * w + k] = m.walls[w].point[k] - m.walls[w].point0[k];
         wall_force[3 * w + k] = m.walls[w].force[k];
       }
-    results->write_frame(sim.time(), FrameFields{disp, m.v, s6, vm, pr, ep, wall_disp, wall_force});
+    FrameFields fields{disp, m.v, s6, vm, pr, ep, wall_disp, wall_force};
+    if (optional_fields) {
+      if (wants("log_strain")) optional_fields->log_strain(m, log_strain);
+      if (wants("nodal_stress")) optional_fields->nodal_stress(m, s6, nodal_stress);
+      if (wants("contact_pressure")) optional_fields->contact_pressure(m, contact_pressure);
+      if (wants("body_velocity")) optional_fields->body_velocity(m, body_velocity);
+      fields.log_strain = log_strain;
+      fields.nodal_stress = nodal_stress;
+      fields.contact_force = m.f_contact;
+      fields.contact_pressure = contact_pressure;
+      fields.body_velocity = body_velocity;
+    }
+    results->write_frame(sim.time(), fields);
     schedule.frame_written(sim.time());
   };
   HistorySample sample;
