@@ -16,6 +16,8 @@
 //                     over the faces around the node with their areas; 0 inside and on a free
 //                     surface
 //   body_velocity     per node, 3: the velocity of the centre of mass of the node's body
+//   node_body         per node: the node's body index, which results.h5 has in /mesh/node_body;
+//                     nothing to compute (the results writer names it in results.xdmf)
 #include <string>
 #include <vector>
 
@@ -26,7 +28,8 @@ namespace femdem {
 
 // The names `[output] fields` accepts, in the order results.h5 lists them.
 inline const std::vector<std::string> kOptionalOutputFields = {
-    "log_strain", "nodal_stress", "contact_force", "contact_pressure", "body_velocity"};
+    "log_strain", "nodal_stress", "contact_force", "contact_pressure", "body_velocity",
+    "node_body"};
 
 class OutputFields {
  public:

@@ -173,6 +173,7 @@ struct ResultsWriter::Impl {
         {"contact_pressure", true, nodes, 1, "Scalar", "Pa", {}, &F::contact_pressure},
         {"body_velocity", true, nodes, 3, "Vector", "m/s", {}, &F::body_velocity}};
     for (const std::string& name : options.optional_fields) {
+      if (name == "node_body") continue;  // /mesh/node_body, named in results.xdmf
       const auto it = std::find_if(std::begin(optional), std::end(optional),
                                    [&](const FrameDataset& d) { return d.name == name; });
       if (it == std::end(optional))
@@ -562,6 +563,14 @@ struct ResultsWriter::Impl {
          " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">results.h5:/mesh/coordinates"
          "</DataItem>\n";
     s += "        </Geometry>\n";
+    if (std::find(options.optional_fields.begin(), options.optional_fields.end(), "node_body") !=
+        options.optional_fields.end()) {
+      s += "        <Attribute Name=\"node_body\" AttributeType=\"Scalar\" Center=\"Node\">\n";
+      s += "          <DataItem Dimensions=\"" + n +
+           "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">results.h5:/mesh/node_body"
+           "</DataItem>\n";
+      s += "        </Attribute>\n";
+    }
     s += "        <Attribute Name=\"body\" AttributeType=\"Scalar\" Center=\"Cell\">\n";
     s += "          <DataItem Dimensions=\"" + e +
          "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">results.h5:/mesh/element_body"

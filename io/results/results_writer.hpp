@@ -108,7 +108,8 @@ struct ResultsOptions {
   // many (at most kMaxFrameViews). 0: none (every frame is named by a HyperSlab).
   std::int64_t expected_frames = 0;
   // Optional fields written besides the default ones: any of "log_strain", "nodal_stress",
-  // "contact_force", "contact_pressure", "body_velocity" (each a /frames dataset, named so).
+  // "contact_force", "contact_pressure", "body_velocity" (each a /frames dataset, named so), and
+  // "node_body" (/mesh/node_body named in results.xdmf as a node field).
   std::vector<std::string> optional_fields = {};
 };
 

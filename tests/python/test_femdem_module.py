@@ -383,6 +383,8 @@ class ResultsTest(TempDir):
             np.testing.assert_array_equal(r.series("pressure")[1], frame_values(1)["pressure"])
             fr = r.frame(1)
             self.assertEqual(fr["time"], 0.5)
+            self.assertEqual([r.frame_at(t) for t in (-1.0, 0.2, 0.3, 0.5, 0.9, 5.0)],
+                             [0, 0, 1, 1, 2, 2])  # frames at t = 0, 0.5, 1
             np.testing.assert_array_equal(fr["velocity"], frame_values(1)["velocity"])
             np.testing.assert_array_equal(r.positions(2), mesh["coordinates"]
                                           + frame_values(2)["displacement"])

@@ -128,7 +128,7 @@ class OptionalFieldsReadAndMeanWhatTheySay(unittest.TestCase):
     the nodal stress the element stress, the body velocity the mass-weighted mean velocity."""
 
     FIELDS = ("log_strain", "nodal_stress", "contact_force", "contact_pressure",
-              "body_velocity")
+              "body_velocity", "node_body")
 
     def test_fields(self):
         import h5py
@@ -149,6 +149,7 @@ class OptionalFieldsReadAndMeanWhatTheySay(unittest.TestCase):
             with h5py.File(os.path.join(out, "results.h5"), "r") as h5:
                 fr = {n: h5["frames"][n][()] for n in h5["frames"]}
                 X = h5["mesh/coordinates"][()]
+                node_body = h5["mesh/node_body"][()]
             with meshio.xdmf.TimeSeriesReader(os.path.join(out, "results.xdmf")) as reader:
                 reader.read_points_cells()
                 for k in range(reader.num_steps):
@@ -157,6 +158,7 @@ class OptionalFieldsReadAndMeanWhatTheySay(unittest.TestCase):
                     for name in ("nodal_stress", "contact_force", "contact_pressure",
                                  "body_velocity"):
                         np.testing.assert_array_equal(point_data[name], fr[name][k], name)
+                    np.testing.assert_array_equal(point_data["node_body"], node_body)
             stress = fr["stress"][-1]
             self.assertLess(np.ptp(stress[:, 8]), 0.02 * abs(stress[:, 8].mean()))  # near uniform
             lo, hi = X.min(0), X.max(0)

@@ -203,6 +203,14 @@ class Results:
                            + ", ".join(self.field_names) + ")")
         return self.file["frames"][name]
 
+    def frame_at(self, time):
+        """The index of the complete frame nearest to `time` (s)."""
+        import numpy as np
+
+        if self._frame_count == 0:
+            raise IndexError(f"{self.path}: no complete frames")
+        return int(np.argmin(np.abs(np.asarray(self._times) - time)))
+
     def field(self, name, frame=-1):
         """One frame's field by name: [N,3] for a node vector, [E,9] for the stress, [E] for an
         element scalar. `frame` counts the complete frames (-1: the last one)."""
