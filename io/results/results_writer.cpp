@@ -197,6 +197,18 @@ struct ResultsWriter::Impl {
     }
   }
 
+  // Opens the Uniform grid of frame `frames - 1` (named prefix + its six-digit index) with its
+  // time; returns the name.
+  std::string open_grid(std::string& s, const char* prefix, double time) const {
+    char name[48];
+    std::snprintf(name, sizeof name, "%s%06lld", prefix, static_cast<long long>(frames - 1));
+    s += "      <Grid Name=\"";
+    s += name;
+    s += "\" GridType=\"Uniform\">\n";
+    s += "        <Time Value=\"" + fmt_double(time) + "\"/>\n";
+    return name;
+  }
+
   // walls.xdmf: the walls' quadrilaterals where they are at each frame, numbers inline.
   std::string walls_xdmf_text() const {
     std::string s = "<?xml version=\"1.0\" ?>\n<!-- femdem walls: ";
@@ -214,12 +226,7 @@ struct ResultsWriter::Impl {
     const std::size_t w = walls.size();
     const std::string nw = std::to_string(w);
     std::string& s = walls_frames;
-    char name[40];
-    std::snprintf(name, sizeof name, "walls_%06lld", static_cast<long long>(frames - 1));
-    s += "      <Grid Name=\"";
-    s += name;
-    s += "\" GridType=\"Uniform\">\n";
-    s += "        <Time Value=\"" + fmt_double(time) + "\"/>\n";
+    open_grid(s, "walls_", time);
     s += "        <Topology TopologyType=\"Quadrilateral\" NumberOfElements=\"" + nw + "\">\n";
     s += "          <DataItem Dimensions=\"" + nw +
          " 4\" NumberType=\"Int\" Precision=\"4\" Format=\"XML\">";
@@ -547,12 +554,7 @@ struct ResultsWriter::Impl {
     const std::string n = std::to_string(nodes), e = std::to_string(elements);
     const char* precision = options.single_precision ? "4" : "8";
     std::string& s = xdmf_frames;
-    char name[32];
-    std::snprintf(name, sizeof name, "frame_%06lld", static_cast<long long>(frames - 1));
-    s += "      <Grid Name=\"";
-    s += name;
-    s += "\" GridType=\"Uniform\">\n";
-    s += "        <Time Value=\"" + fmt_double(time) + "\"/>\n";
+    const std::string name = open_grid(s, "frame_", time);
     s += "        <Topology TopologyType=\"Tetrahedron_10\" NumberOfElements=\"" + e + "\">\n";
     s += "          <DataItem Dimensions=\"" + e +
          " 10\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">results.h5:/mesh/connectivity"
@@ -591,8 +593,8 @@ struct ResultsWriter::Impl {
       s += "\">\n";
       if (viewed) {
         s += "          <DataItem Dimensions=\"" + shape + "\" NumberType=\"Float\" Precision=\"" +
-             precision + "\" Format=\"HDF\">results.h5:/frame_views/" + std::string(name + 6) +
-             "/" + fd.name + "</DataItem>\n";
+             precision + "\" Format=\"HDF\">results.h5:/frame_views/" + name.substr(6) + "/" +
+             fd.name + "</DataItem>\n";
       } else {
         s += "          <DataItem ItemType=\"HyperSlab\" Dimensions=\"1 " + shape +
              "\" Type=\"HyperSlab\" NumberType=\"Float\" Precision=\"" + precision + "\">\n";

@@ -6,30 +6,14 @@
 
 #include "engine/errors.hpp"
 #include "engine/simulation.hpp"
-#include "support/kuhn_box.hpp"
+#include "support/steel_boxes.hpp"
 
 using namespace femdem;
 
 namespace {
 
 ModelSpec two_boxes() {
-  ModelSpec s;
-  MaterialParams mat;
-  mat.name = "steel";
-  mat.density = 7800.0;
-  mat.youngs_modulus = 200e9;
-  mat.poisson_ratio = 0.3;
-  s.materials.push_back(mat);
-  for (int i = 0; i < 2; ++i) {
-    BodySpec b;
-    b.name = "box" + std::to_string(i);
-    b.material = 0;
-    b.mesh = test::kuhn_box(2, 2, 2, Vec3(1.0, 1.0, 1.0));
-    for (Vec3& p : b.mesh.nodes) p.x() += 2.0 * i;
-    s.bodies.push_back(b);
-  }
-  s.simulation.end_time = 1.0;
-  return s;
+  return test::steel_boxes(2, 2);
 }
 
 }  // namespace

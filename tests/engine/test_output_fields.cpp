@@ -9,30 +9,14 @@
 
 #include "engine/output_fields.hpp"
 #include "engine/simulation.hpp"
-#include "support/kuhn_box.hpp"
+#include "support/steel_boxes.hpp"
 
 using namespace femdem;
 
 namespace {
 
 Model unit_box_model(int bodies = 1) {
-  ModelSpec s;
-  MaterialParams mat;
-  mat.name = "steel";
-  mat.density = 7800.0;
-  mat.youngs_modulus = 200e9;
-  mat.poisson_ratio = 0.3;
-  s.materials.push_back(mat);
-  for (int i = 0; i < bodies; ++i) {
-    BodySpec b;
-    b.name = "box" + std::to_string(i);
-    b.material = 0;
-    b.mesh = test::kuhn_box(3, 3, 3, Vec3(1.0, 1.0, 1.0));
-    for (Vec3& p : b.mesh.nodes) p.x() += 2.0 * i;
-    s.bodies.push_back(b);
-  }
-  s.simulation.end_time = 1.0;
-  return build_model(s);
+  return build_model(test::steel_boxes(bodies, 3));
 }
 
 Eigen::Matrix3d rotation() {
