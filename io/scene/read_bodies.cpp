@@ -95,6 +95,23 @@ Tet10Mesh Reader::read_mesh(const toml::table& mesh, const std::string& bp, toml
       out.insert_or_assign("refine_growth", r.growth);
       refine = r;
     }
+    if (max_mesh_elements_ > 0) {
+      // the reading's own cap: counted at the finest size the mesh can have
+      const double finest = refine ? refine->size : h;
+      std::int64_t count = 0;
+      try {
+        count = gen == "box"        ? box_element_count(size, finest)
+                : gen == "cylinder" ? cylinder_element_count(radius, length, finest)
+                                    : sphere_element_count(radius, finest);
+      } catch (const InputError&) {
+        count = max_mesh_elements_ + 1;  // past the generators' own limit
+      }
+      if (count > max_mesh_elements_)
+        fail(mesh.get("element_size"), dotted(p, "element_size"),
+             "the mesh would have up to " + std::to_string(count) +
+                 " elements, more than this reading allows (" + std::to_string(max_mesh_elements_) +
+                 ")");
+    }
     try {
       if (refine) {
         // Checked (and its element count estimated) inside the generators.
@@ -158,6 +175,8 @@ Tet10Mesh Reader::read_mesh(const toml::table& mesh, const std::string& bp, toml
     CadMeshOptions options;
     options.element_size = positive(mesh, "element_size", p, std::nullopt, &mesh);
     options.scale = positive(mesh, "scale", p, 1.0, &mesh);
+    if (max_mesh_elements_ > 0)
+      options.max_elements = std::min(options.max_elements, max_mesh_elements_);
     out.insert_or_assign("element_size", options.element_size);
     out.insert_or_assign("scale", options.scale);
     CachedCadMesh cm;

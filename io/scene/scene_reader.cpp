@@ -93,7 +93,8 @@ std::string syntax_error_text(const std::string& text, std::string_view descript
 
 }  // namespace
 
-SceneFile load_scene(const std::string& path, const std::vector<std::string>& overrides) {
+SceneFile load_scene(const std::string& path, const std::vector<std::string>& overrides,
+                     SceneReadLimits limits) {
   SceneFile scene;
   scene.path = path;
   const fs::path p(path);
@@ -119,6 +120,7 @@ SceneFile load_scene(const std::string& path, const std::vector<std::string>& ov
   }
 
   Reader reader(path, fs::path(scene.directory));
+  reader.max_mesh_elements_ = limits.max_mesh_elements;
   for (const auto& o : overrides) reader.apply_override(root, o);
 
   toml::table resolved;

@@ -3,6 +3,7 @@
 // Reads a scene file (TOML, see docs/SCENES.md), applies --set overrides, checks every value
 // and builds the meshes. Every problem is an InputError naming the file, line, column and the
 // dotted key (arrays of tables are named by their `name`: "bodies.ball.mesh.radius").
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -23,7 +24,14 @@ struct SceneFile {
 // arrays of tables addressed by their name ("bodies.ball.velocity"); VALUE is read as a TOML
 // value, or as a bare string when it is not one ("mesh.file=part.msh").
 // Throws InputError.
-SceneFile load_scene(const std::string& path, const std::vector<std::string>& overrides = {});
+struct SceneReadLimits {
+  // > 0: a body's mesh (generated, or made from a CAD surface) of more elements than this is an
+  // input error before it is made. 0: only the generators' and the mesher's own limits. What the
+  // scene fuzz target sets, so that an input costs milliseconds (tests/fuzz).
+  std::int64_t max_mesh_elements = 0;
+};
+SceneFile load_scene(const std::string& path, const std::vector<std::string>& overrides = {},
+                     SceneReadLimits limits = {});
 
 // The rotation of `rotation = [rx, ry, rz]` (degrees) in scenes: Rz(rz) Ry(ry) Rx(rx).
 Eigen::Matrix3d rotation_from_degrees(const Vec3& rotation_degrees);

@@ -132,6 +132,8 @@ class Reader {
  public:
   // What happened while reading that the user should see in the log (CAD meshing, cache).
   mutable std::vector<std::string> notes_;
+  // SceneReadLimits::max_mesh_elements (0: none beyond the mesh sources' own)
+  std::int64_t max_mesh_elements_ = 0;
 };
 
 }  // namespace femdem::scene

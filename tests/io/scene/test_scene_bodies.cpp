@@ -223,4 +223,20 @@ TEST(SceneReader, GmshFileWithSeveralVolumesNeedsOneChosen) {
   EXPECT_NE(sets.find("its node sets: left_top_corner, left_bottom"), std::string::npos) << sets;
 }
 
+// SceneReadLimits: a mesh past the reading's cap is an input error on its element_size, before
+// it is made (kBase's box: 0.02 m at 0.01 m is 2 x 2 x 2 cells of 6 tetrahedra = 48 elements).
+TEST(SceneReader, MeshElementCapRefusesBeforeMeshing) {
+  const std::string path = write_file(tmp_dir() / "capped.toml", scene_text(0, ""));
+  EXPECT_NO_THROW(load_scene(path, {}, {.max_mesh_elements = 48}));
+  try {
+    load_scene(path, {}, {.max_mesh_elements = 47});
+    FAIL() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key, "bodies.ball.mesh.element_size");
+    EXPECT_NE(std::string(e.what()).find("up to 48 elements, more than this reading allows (47)"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
