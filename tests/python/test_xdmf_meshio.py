@@ -175,6 +175,9 @@ class OptionalFieldsReadAndMeanWhatTheySay(unittest.TestCase):
                 nodes = face_interior(axis, hi[axis])
                 expected = -stress[:, component].mean()
                 self.assertGreater(expected, 0.0)
+                print(f"contact_pressure on the interior of face {'zx'[axis == 0]}+: "
+                      f"{p[nodes].min() / 1e6:.2f}-{p[nodes].max() / 1e6:.2f} MPa, "
+                      f"-stress: {expected / 1e6:.2f} MPa")
                 np.testing.assert_allclose(p[nodes], expected, rtol=0.01)
             np.testing.assert_allclose(fr["nodal_stress"][-1][:, 8], stress[:, 8].mean(),
                                        rtol=0.02)
