@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <tuple>
 
 #include "io/packing/packing_internal.hpp"
@@ -30,13 +31,29 @@ std::vector<PackedParticle> lattice_packing(const PackingParams& p) {
   const double tol = 1e-9 * d;
   const Vec3 origin = box.cylinder ? Vec3(0.0, 0.0, r) : Vec3(r, r, r);
   const Vec3 extent = box.hi - box.lo;
-  const int nz = static_cast<int>(std::floor(extent.z() / a)) + 2;
-  const int nxy = static_cast<int>(std::floor(std::max(extent.x(), extent.y()) / a)) + 2;
-  const int xy_from = box.cylinder ? -nxy : 0;
+  // Cells per axis: a box's own extents; a cylinder's square about its axis.
+  const double cells_z = std::floor(extent.z() / a) + 2.0;
+  const double cells_x =
+      std::floor((box.cylinder ? std::max(extent.x(), extent.y()) : extent.x()) / a) + 2.0;
+  const double cells_y =
+      std::floor((box.cylinder ? std::max(extent.x(), extent.y()) : extent.y()) / a) + 2.0;
+  // Refused before it is searched: a lattice this fine is more particles than a model can hold,
+  // and searching it would take minutes.
+  const double candidates =
+      cells_z * (box.cylinder ? 4.0 : 1.0) * cells_x * cells_y * static_cast<double>(basis.size());
+  if (!(candidates <= kMaxLatticeSites))
+    bad("diameter", "the lattice would have up to " +
+                        std::to_string(static_cast<long long>(std::min(candidates, 1e18))) +
+                        " sites in the container, more than " +
+                        std::to_string(static_cast<long long>(kMaxLatticeSites)) +
+                        ": use a larger diameter or a smaller container");
+  const int nz = static_cast<int>(cells_z);
+  const int nx = static_cast<int>(cells_x), ny = static_cast<int>(cells_y);
+  const int x_from = box.cylinder ? -nx : 0, y_from = box.cylinder ? -ny : 0;
   std::vector<Vec3> sites;
   for (int k = 0; k < nz; ++k)
-    for (int j = xy_from; j < nxy; ++j)
-      for (int i = xy_from; i < nxy; ++i)
+    for (int j = y_from; j < ny; ++j)
+      for (int i = x_from; i < nx; ++i)
         for (const Vec3& b : basis) {
           const Vec3 c = origin + a * (Vec3(i, j, k) + b);
           if (box.holds(c, r, false, tol)) sites.push_back(c);

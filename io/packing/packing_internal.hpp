@@ -25,6 +25,9 @@ constexpr double kPi = std::numbers::pi;
 // Shortest round-trip form, always a TOML float.
 std::string num(double v);
 bool is_lattice(const std::string& a);
+// Most lattice sites a container may be searched for: more particles than a model can hold (each
+// body has tens of elements at least, a model at most kMaxGeneratedElements = 2e7).
+constexpr double kMaxLatticeSites = 1e6;
 
 // ---------------------------------------------------------------------------------------------
 // Random numbers. std::mt19937_64's sequence is fixed by the standard, but the standard

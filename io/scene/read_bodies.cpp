@@ -284,6 +284,7 @@ void Reader::read_bodies(const toml::table& root, ModelSpec& spec, toml::array& 
     body_node_sets_[b.name] = std::move(node_sets);
     if (b.mesh.elements.empty() || b.mesh.nodes.empty())
       fail(mn, dotted(p, "mesh"), "the mesh has no elements");
+    count_elements(static_cast<double>(b.mesh.elements.size()), mn, dotted(p, "mesh"));
     place_mesh(b.mesh, rotation, position);
 
     toml::table o;

@@ -241,6 +241,16 @@ void Reader::read_packings(const toml::table& root, ModelSpec& spec, toml::array
       for (Vec3& x : reference.nodes) x = (x - c) / rb;
     }
     o.insert_or_assign("mesh", std::move(mesh_out));
+    {
+      double total = 0.0;
+      if (element_size > 0.0)
+        for (const PackedParticle& q : packing.particles)
+          total += static_cast<double>(sphere_element_count(q.radius, element_size));
+      else
+        total = static_cast<double>(reference.elements.size()) *
+                static_cast<double>(packing.particles.size());
+      count_elements(total, mn, mp);
+    }
 
     // One body per particle, named <name>0001, <name>0002, ... (bottom layers first).
     const std::size_t n = packing.particles.size();

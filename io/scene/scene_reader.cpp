@@ -121,6 +121,7 @@ SceneFile load_scene(const std::string& path, const std::vector<std::string>& ov
 
   Reader reader(path, fs::path(scene.directory));
   reader.max_mesh_elements_ = limits.max_mesh_elements;
+  reader.max_total_elements_ = limits.max_total_elements;
   for (const auto& o : overrides) reader.apply_override(root, o);
 
   toml::table resolved;

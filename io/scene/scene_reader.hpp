@@ -29,6 +29,9 @@ struct SceneReadLimits {
   // input error before it is made. 0: only the generators' and the mesher's own limits. What the
   // scene fuzz target sets, so that an input costs milliseconds (tests/fuzz).
   std::int64_t max_mesh_elements = 0;
+  // > 0: a scene whose bodies and packings would have more elements than this in all is an
+  // input error, found before a packing's bodies are meshed. 0: no cap beyond the generators'.
+  std::int64_t max_total_elements = 0;
 };
 SceneFile load_scene(const std::string& path, const std::vector<std::string>& overrides = {},
                      SceneReadLimits limits = {});

@@ -130,6 +130,16 @@ void Reader::fail_at(const Location& at, const std::string& key, const std::stri
   throw InputError(message + at.note, at.file, at.line, at.column, key);
 }
 
+void Reader::count_elements(double elements, const toml::node* where,
+                            const std::string& key) const {
+  elements_read_ += elements;
+  if (max_total_elements_ > 0 && elements_read_ > static_cast<double>(max_total_elements_))
+    fail(where, key,
+         "the scene would have " + format_number(elements_read_) +
+             " elements in all with this one, more than this reading allows (" +
+             std::to_string(max_total_elements_) + ")");
+}
+
 void Reader::check_keys(const toml::table& t, const std::string& prefix,
                         const std::vector<std::string>& allowed, const std::string& context) const {
   for (const auto& [k, v] : t) {

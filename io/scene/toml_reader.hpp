@@ -134,6 +134,14 @@ class Reader {
   mutable std::vector<std::string> notes_;
   // SceneReadLimits::max_mesh_elements (0: none beyond the mesh sources' own)
   std::int64_t max_mesh_elements_ = 0;
+  // SceneReadLimits::max_total_elements (0: none)
+  std::int64_t max_total_elements_ = 0;
+  // Counts `elements` more into the scene's total (the bodies read so far); past
+  // max_total_elements_ an input error at `where` (key `key`) before anything more is meshed.
+  void count_elements(double elements, const toml::node* where, const std::string& key) const;
+
+ private:
+  mutable double elements_read_ = 0.0;
 };
 
 }  // namespace femdem::scene

@@ -18,9 +18,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (std::string line; std::getline(lines, line);)
     if (line.rfind("#set ", 0) == 0) overrides.push_back(line.substr(5));
   const std::string path = femdem::fuzz::write_input("scene.toml", data, size);
-  // (meshes capped so that an input costs milliseconds: a mutated element_size would otherwise
-  // make millions of elements, or a CAD mesh of minutes)
-  femdem::fuzz::expect_result_or_input_error(
-      [&] { femdem::load_scene(path, overrides, {.max_mesh_elements = 5000}); });
+  // (meshes capped, each and in all, so that an input costs milliseconds: a mutated element_size
+  // or packing would otherwise make millions of elements, or CAD meshes of minutes)
+  femdem::fuzz::expect_result_or_input_error([&] {
+    femdem::load_scene(path, overrides, {.max_mesh_elements = 2000, .max_total_elements = 10000});
+  });
   return 0;
 }

@@ -56,6 +56,27 @@ TEST(Packing, SimpleCubicThesisBox) {
   }
 }
 
+// A long thin box (found by fuzzing, tests/fuzz/corpus/scene_reader/regression-timeout-*): the
+// lattice searched the square of its longest side, 1.4e9 sites for 4 m x 10 mm x 10 mm at
+// 0.5 mm, over a minute; now each side's own cells (3.9e6), and a lattice with more candidate
+// sites than 1e6 is refused on its diameter before the search.
+TEST(Packing, LongThinBoxLatticeSearchesItsOwnCellsAndHugeLatticesAreRefused) {
+  PackingParams p = thesis_box();
+  p.size = Vec3(0.4, 0.01, 0.01);  // 800 x 20 x 20 sites
+  p.diameter = 0.5e-3;
+  EXPECT_EQ(femdem::generate_packing(p).particles.size(), 800u * 20u * 20u);
+  p.size = Vec3(4.01, 0.01, 0.01);
+  try {
+    femdem::generate_packing(p);
+    FAIL() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key, "diameter");
+    EXPECT_NE(std::string(e.what()).find("up to 3882164 sites in the container, more than 1000000"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 // Body- and face-centred cubic lattices in boxes that fit a whole number of cells: counts and
 // fractions from the lattice geometry.
 TEST(Packing, BccAndFccLatticeCountsAndFractions) {

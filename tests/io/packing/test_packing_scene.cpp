@@ -6,6 +6,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cstdint>
 #include <filesystem>
 #include <numbers>
 #include <string>
@@ -75,6 +76,37 @@ position = [1.0, 0.0, 0.0]
 // layer settled in a box is laid on a slope. Every node of the turned scene is R x + position
 // of the same node in the unturned one, with R = Rz(30) Ry(-20) Rx(10) built here from the
 // documented convention (docs/SCENES.md), not from the reader's helper.
+// SceneReadLimits::max_total_elements counts a packing's bodies before they are meshed: a cap
+// one element short of the 64 spheres' total refuses the scene on the packing's mesh key.
+TEST(PackingScene, TotalElementCapRefusesBeforeTheBodiesAreMeshed) {
+  const fs::path dir = tmp_dir("scene_total_cap");
+  write_text(dir / "s.toml", std::string(kSceneHead) + R"(
+[[packings]]
+name = "grains"
+material = "powder"
+mesh = { generator = "sphere", cells_per_radius = 1 }
+generate = { container = "box", size = [0.01, 0.01, 0.01], arrangement = "simple_cubic", diameter = 2.5e-3 }
+)");
+  const std::string path = (dir / "s.toml").string();
+  const femdem::SceneFile s = femdem::load_scene(path);
+  std::int64_t total = 0;
+  for (const auto& b : s.model.bodies) total += static_cast<std::int64_t>(b.mesh.elements.size());
+  ASSERT_GT(total, 64);
+  EXPECT_NO_THROW(femdem::load_scene(path, {}, {.max_total_elements = total}));
+  try {
+    femdem::load_scene(path, {}, {.max_total_elements = total - 1});
+    FAIL() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key, "packings.grains.mesh");
+    EXPECT_NE(std::string(e.what()).find("the scene would have " + std::to_string(total) +
+                                         " elements in all with this one, more than this "
+                                         "reading allows (" +
+                                         std::to_string(total - 1) + ")"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(PackingScene, RotationTurnsTheWholePackingAboutTheContainerOrigin) {
   const fs::path dir = tmp_dir("scene_rotation");
   const std::string packing = R"(
