@@ -28,6 +28,9 @@ bool is_lattice(const std::string& a);
 // Most lattice sites a container may be searched for: more particles than a model can hold (each
 // body has tens of elements at least, a model at most kMaxGeneratedElements = 2e7).
 constexpr double kMaxLatticeSites = 1e6;
+// Widest and highest container of a random packing, in largest particle diameters (its settling
+// grid indexes cells in 20 bits, +-2^19, across; the column above the bed needs room too).
+constexpr double kMaxRandomContainerDiameters = 1e5;
 
 // ---------------------------------------------------------------------------------------------
 // Random numbers. std::mt19937_64's sequence is fixed by the standard, but the standard

@@ -119,6 +119,20 @@ std::optional<PackingParamError> check_packing_params(const PackingParams& p) {
   if (dmax > width * (1.0 + 1e-12) || dmax > box.hi.z() * (1.0 + 1e-12))
     return err(p.distribution == "monodisperse" ? "diameter" : "diameter_max",
                "the largest particle (" + num(dmax) + " m) does not fit in the container");
+  if (!lattice) {
+    // The settling's neighbour grid numbers its cells (one largest diameter wide) in 20 bits
+    // across: a container wider than that is no packing anyone settles (found by fuzzing: a
+    // cylinder of radius 1e13 m for three 2 mm grains overflowed the cell index).
+    const bool cyl = p.container == "cylinder";
+    const double across = cyl ? 2.0 * p.radius : std::max(p.size.x(), p.size.y());
+    const double high = cyl ? p.height : p.size.z();
+    const double limit = packing_detail::kMaxRandomContainerDiameters;
+    if (!(across / dmax <= limit) || !(high / dmax <= limit))
+      return err(cyl ? (across / dmax > limit ? "radius" : "height") : "size",
+                 "the container is " + num(std::max(across, high) / dmax) +
+                     " largest particle diameters across; a random packing allows at most " +
+                     num(limit));
+  }
   if (p.shape.empty()) return err("shape", "must not be empty");
   for (char c : p.shape)
     if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.'))

@@ -709,8 +709,7 @@ void ResultsWriter::write_frame(double time, const FrameFields& f) {
   };
   for (const FrameDataset& fd : m.fields) need(f.*fd.source, fd.rows * fd.given_comps(), fd.name);
   for (const FrameDataset& fd : m.wall_fields)
-    need(f.*fd.source, fd.rows * fd.given_comps(),
-         fd.source == &FrameFields::wall_force ? "wall_force" : "wall_displacement");
+    need(f.*fd.source, fd.rows * fd.given_comps(), ("wall_" + std::string(fd.name)).c_str());
   for (FrameDataset& fd : m.fields) {
     const double* data = (f.*fd.source).data();
     if (fd.comps == 9) {

@@ -314,6 +314,14 @@ TEST(Packing, BadParametersNameTheKey) {
   p.diameter_max = 2e-3;
   EXPECT_EQ(key_of(p), "distribution");
   p = ok;
+  p.container = "cylinder";  // found by fuzzing: overflowed the settling grid's cell index
+  p.radius = 1e13;
+  p.height = 6e-3;
+  EXPECT_EQ(key_of(p), "radius");
+  p = ok;
+  p.size.z() = 1e5 * 1.01 * ok.diameter;
+  EXPECT_EQ(key_of(p), "size");
+  p = ok;
   p.orientation = "sideways";
   EXPECT_EQ(key_of(p), "orientation");
   p = ok;
