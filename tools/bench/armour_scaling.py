@@ -33,7 +33,7 @@ SIDE_CLEARANCE = 0.6  # side walls 0.6 m outside the packing box, as shipped
 
 
 def scaled_scene(units, out_dir):
-    """The shipped scene's text with the width scaled for `units` units."""
+    """The shipped scene's text widened for `units` units (30 units: the scene itself)."""
     text = open(SCENE).read()
     width = units / UNITS_PER_WIDTH
     head, rest = text.split("[[bodies]]", 1)
@@ -51,19 +51,18 @@ def scaled_scene(units, out_dir):
                 f"rotation = [0.0, -33.6901, 0.0]\nposition = [{x}, {y:.4f}, {z}]\n"
                 "fixed = true\n")
     tail = "[[packings]]" + rest.split("[[packings]]", 1)[1]
-    tail = tail.replace('file = "meshes/', f'file = "{ROOT}/scenes/meshes/')
-    cache = (f"{ROOT}/scenes/packings/armour_layer_30.csv" if units == 30
-             else f"{out_dir}/packing_{units}.csv")
-    tail = tail.replace('cache = "packings/armour_layer_30.csv"', f'cache = "{cache}"')
-    tail = tail.replace("size = [20.0, 8.0, 12.0], count = 30",
-                        f"size = [20.0, {width:.4f}, 12.0], count = {units}")
-    tail = tail.replace("position = [1.2481, -4.0, 2.6348]",
-                        f"position = [1.2481, {-width / 2:.4f}, 2.6348]")
     side = width / 2 + SIDE_CLEARANCE
-    tail = tail.replace("point = [0.0, -4.6, 0.0]", f"point = [0.0, {-side:.4f}, 0.0]")
-    tail = tail.replace("point = [0.0, 4.6, 0.0]", f"point = [0.0, {side:.4f}, 0.0]")
-    if units != 30 and "count = %d" % units not in tail:
-        sys.exit("armour_scaling: the shipped scene's packing line changed; update this script")
+    for old, new in (
+            ('file = "meshes/', f'file = "{ROOT}/scenes/meshes/'),
+            ('cache = "packings/armour_layer_30.csv"', f'cache = "{out_dir}/packing_{units}.csv"'),
+            ("size = [20.0, 8.0, 12.0], count = 30",
+             f"size = [20.0, {width:.4f}, 12.0], count = {units}"),
+            ("position = [1.2481, -4.0, 2.6348]", f"position = [1.2481, {-width / 2:.4f}, 2.6348]"),
+            ("point = [0.0, -4.6, 0.0]", f"point = [0.0, {-side:.4f}, 0.0]"),
+            ("point = [0.0, 4.6, 0.0]", f"point = [0.0, {side:.4f}, 0.0]")):
+        if old not in tail:  # the shipped scene changed under this script
+            sys.exit(f"armour_scaling: '{old}' is no longer in {SCENE}; update this script")
+        tail = tail.replace(old, new)
     return head + "\n".join(cubes) + "\n" + tail
 
 
