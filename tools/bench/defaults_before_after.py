@@ -99,8 +99,9 @@ def measures(out):
                 dmax = d if dmax is None else max(dmax, d)
     results = []
     for name, b in s["bodies"].items():
-        if b.get("coefficient_of_restitution") is not None:
-            results.append(f"e({name}) {b['coefficient_of_restitution']:.4f}")
+        e = b.get("coefficient_of_restitution")
+        if e is not None:  # that of the centre of mass (and of the kinetic energy)
+            results.append(f"e({name}) {e['com']:.4f}")
     eps = max((b.get("max_equivalent_plastic_strain", 0.0) for b in s["bodies"].values()),
               default=0.0)
     if eps > 0.0:
