@@ -107,7 +107,9 @@ def main():
         elements = after["elements"]
         rows.append((units, bodies, elements, steps, cpu, cand / steps, touch / steps,
                      cpu / steps / units * 1e6, steps * elements / cpu))
-        print(f"{units} units done: {steps} steps, {cpu:.1f} s CPU", file=sys.stderr, flush=True)
+        print(f"{units} units done: {steps} steps, {cpu:.1f} s CPU, {cand / steps:.0f} candidate "
+              f"and {touch / steps:.1f} touching pairs per step, {elements} elements",
+              file=sys.stderr, flush=True)
     print(f"| units | bodies | elements | steps in [{t0}, {t1}] s | CPU s | steps per CPU s |"
           " candidate pairs / step | touching pairs / step | candidates / unit / step |"
           " CPU us / unit / step | element updates per CPU s |")
