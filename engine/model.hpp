@@ -4,6 +4,7 @@
 // Nodes and elements of body b are the contiguous ranges [first_node, first_node + node_count)
 // and [first_element, first_element + element_count).
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -47,15 +48,39 @@ struct Wall {
   std::vector<ForcePoint> force_history;
   double mass = 0.0;
   double accel = 0.0;
-  // finite axial extent (WallSpec::bounded)
+  // finite axial extent (WallSpec::bounded): [bound_min, bound_max] along the unit bound_axis
+  // where the wall stands at t = 0; the extent travels with the wall (a tube that is lifted
+  // along its axis releases what lies below its lower end)
   bool bounded = false;
   Vec3 bound_axis = Vec3(0, 0, 1);
   double bound_min = 0.0, bound_max = 0.0;
+  // how far behind its plane the wall reaches (WallSpec::thickness; infinite: a half-space)
+  double thickness = HUGE_VAL;
   bool force_driven() const { return !force_history.empty(); }
-  bool acts_at(const Vec3& p) const {
-    if (!bounded) return true;
-    const double s = p.dot(bound_axis);
-    return s >= bound_min && s <= bound_max;
+
+  // How a node at p is pushed out of the wall: by `depth` (> 0; <= 0: free) along `normal`.
+  // A plain wall is a half-space: the depth behind its plane, along its normal. A bounded or
+  // thin wall is a rigid plate, the slab between its plane and `thickness` behind it and between
+  // the ends of its extent; a node inside it is pushed out through the nearest of those faces.
+  // The penalty energy k depth^2 / 2 is then continuous where the faces meet, so an end that
+  // slides past a node (a tube lifted off a column) neither cuts into it nor lets it go with a
+  // jump, and a node behind the plate's back face (outside a tube) is pushed outwards.
+  struct Push {
+    double depth = 0.0;
+    Vec3 normal = Vec3::UnitZ();
+  };
+  Push push(const Vec3& p) const {
+    Push out{(point - p).dot(normal), normal};
+    if (!(out.depth > 0.0)) return out;
+    const double back = thickness - out.depth;
+    if (back < out.depth) out = {back, -normal};
+    if (bounded) {
+      const double s = (p - (point - point0)).dot(bound_axis);
+      const double below = s - bound_min, above = bound_max - s;
+      if (below < out.depth) out = {below, -bound_axis};
+      if (above < out.depth) out = {above, bound_axis};
+    }
+    return out;
   }
 };
 

@@ -343,6 +343,7 @@ Wall make_wall(const WallSpec& ws, const ContactSettings& contact) {
   w.bound_axis = ws.bound_axis.normalized();
   w.bound_min = ws.bound_min;
   w.bound_max = ws.bound_max;
+  w.thickness = ws.thickness;
   return w;
 }
 

@@ -50,7 +50,7 @@ struct SimulationSettings {
     const double r = safety() / kContactSafety;
     return r > 1.0 ? r * r : 1.0;
   }
-  double output_interval = 0.0;   // 0: end_time / 50
+  double output_interval = 0.0;  // 0: end_time / 50
   // [output] fields: the optional results fields to write (engine/output_fields.hpp)
   std::vector<std::string> output_fields;
   double history_interval = 0.0;  // 0: output_interval / 20
@@ -122,12 +122,16 @@ struct WallSpec {
   // its initial velocity (along the normal). Integrated with the nodes' central difference.
   std::vector<ForcePoint> force_history;
   double mass = 0.0;
-  // A wall of finite axial extent (the side of a die whose mouth a compact is ejected through):
-  // it acts only on nodes whose coordinate p . bound_axis lies in [bound_min, bound_max].
+  // A wall of finite axial extent (the side of a die whose mouth a compact is ejected through,
+  // a tube lifted off a granular column): it acts only on nodes whose coordinate p . bound_axis
+  // lies in [bound_min, bound_max] as the wall stands at t = 0; the extent moves with the wall.
   bool bounded = false;
   Vec3 bound_axis = Vec3(0, 0, 1);
   double bound_min = -std::numeric_limits<double>::infinity();
   double bound_max = std::numeric_limits<double>::infinity();
+  // A thin wall (a tube's side): it acts only on nodes less than `thickness` behind its plane;
+  // what lies further behind is on its other side. Infinite: a half-space, as a floor is.
+  double thickness = std::numeric_limits<double>::infinity();
 };
 
 // Region of a body's reference configuration whose nodes a constraint acts on.

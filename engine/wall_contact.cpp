@@ -138,9 +138,11 @@ void WallContact::compute_with(Model& m, double step_dt, std::vector<double>& f,
       Wall& w = m.walls[wi];
       double* slip = stick_.empty() ? nullptr : stick_.data() + 3 * q;
       const double k = near_[q].k;
-      const double d = (w.point - p).dot(w.normal);  // penetration depth
-      // past the end of a bounded wall (a die's mouth) a node is as free as one in front of it
-      if (d <= 0.0 || !w.acts_at(p)) {
+      // the depth and direction the wall pushes the node out by (a node past the end of a
+      // bounded wall, a die's mouth, is as free as one in front of it)
+      const Wall::Push push = w.push(p);
+      const double d = push.depth;
+      if (!(d > 0.0)) {
         if (slip) Law::release(k, slip, sums);
         continue;
       }
@@ -150,7 +152,7 @@ void WallContact::compute_with(Model& m, double step_dt, std::vector<double>& f,
       if (collect_patches_) {
         const double fn = k * d;
         ContactPatch& q = patches_[static_cast<std::size_t>(s.body) * nw + wi];
-        q.force_on_a += fn * w.normal;
+        q.force_on_a += fn * push.normal;
         q.weighted_point += fn * p;
         q.weight += fn;
         q.stiffness += k;
@@ -161,7 +163,7 @@ void WallContact::compute_with(Model& m, double step_dt, std::vector<double>& f,
                                 .damping = w.damping,
                                 .friction = w.friction,
                                 .step_dt = step_dt,
-                                .normal = w.normal,
+                                .normal = push.normal,
                                 .v_rel = v - w.step_velocity};
       const Vec3 fc = Law::apply(in, slip, sums);
       for (int c = 0; c < 3; ++c) f[3 * s.node + c] += fc[c];

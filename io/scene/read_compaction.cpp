@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <cmath>
 
+#include "io/scene/polygon_walls.hpp"
 #include "io/scene/toml_reader.hpp"
 
 namespace femdem::scene {
@@ -79,38 +80,26 @@ void Reader::read_compaction(const toml::table& root, ModelSpec& spec, toml::tab
       fail(d.get("height"), dotted(dp, "height"),
            "must be positive, got " + format_number(*height));
     const double angle = number(d, "angle", dp, 0.0, &d);
-    // Two directions across the axis: x (or y when the axis is near x) made orthogonal to it,
-    // so that a 4-sided die about z has its faces normal to x and y.
-    Vec3 e1 = std::fabs(axis.x()) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
-    e1 = (e1 - e1.dot(axis) * axis).normalized();
-    const Vec3 e2 = axis.cross(e1);
-    const Vec3 centre = spec.walls[c.bottom].point;
-    const double pi = std::acos(-1.0);
-    for (std::int64_t k = 0; k < sides; ++k) {
-      const double th = angle * pi / 180.0 + 2.0 * pi * static_cast<double>(k) / sides;
-      const Vec3 u = std::cos(th) * e1 + std::sin(th) * e2;
-      WallSpec w;
-      w.name = "die_" + std::to_string(k + 1);
+    PolygonPrism die;
+    die.centre = spec.walls[c.bottom].point;
+    die.axis = axis;
+    die.radius = r;
+    die.sides = static_cast<int>(sides);
+    die.angle = angle;
+    die.to = height;  // open at the bottom's side: the bottom wall closes it
+    for (WallSpec& w : polygon_walls("die", die)) {
       if (!names.insert(w.name).second)
         fail(dn, dp,
              "makes walls named die_1 ... die_" + std::to_string(sides) + ", but '" + w.name +
                  "' is already the name of a body or wall");
-      w.point = centre + r * u;  // r is the inscribed radius: each face is r from the axis
-      w.normal = -u;
       w.friction = mu;
       w.penalty_factor = pf;
       w.damping = damping;
-      if (height) {
-        w.bounded = true;
-        w.bound_axis = axis;
-        w.bound_max = centre.dot(axis) + *height;
-      }
       c.die_walls.push_back(static_cast<int>(spec.walls.size()));
       spec.walls.push_back(w);
     }
-    const double side = 2.0 * r * std::tan(pi / static_cast<double>(sides));
-    c.area = 0.5 * r * side * static_cast<double>(sides);
-    c.perimeter = side * static_cast<double>(sides);
+    c.area = polygon_area(r, die.sides);
+    c.perimeter = polygon_side(r, die.sides) * static_cast<double>(sides);
     toml::table od;
     od.insert_or_assign("radius", r);
     od.insert_or_assign("sides", sides);

@@ -7,6 +7,57 @@
 
 namespace femdem::scene {
 
+std::vector<VelocityPoint> Reader::read_velocity_history(const toml::table& t,
+                                                         const std::string& p) const {
+  std::vector<VelocityPoint> history;
+  const toml::node* hn = t.get("velocity_history");
+  if (!hn) return history;
+  const std::string hk = dotted(p, "velocity_history");
+  if (t.contains("velocity"))
+    fail(hn, hk,
+         "give either 'velocity' (constant) or 'velocity_history' (piecewise linear), not both");
+  const toml::array* rows = hn->as_array();
+  if (!rows || rows->empty())
+    fail(hn, hk,
+         "expected a non-empty array of rows [t, vx, vy, vz], e.g. [[0, 0, 0, 0], [1e-3, 0, 0, "
+         "-0.1]], got " +
+             (rows ? std::string("an empty array") : type_name(*hn)));
+  for (std::size_t i = 0; i < rows->size(); ++i) {
+    const toml::node& rn = *rows->get(i);
+    const std::string row = "row " + std::to_string(i + 1);
+    const toml::array* r = rn.as_array();
+    if (!r || r->size() != 4)
+      fail(&rn, hk,
+           row + " must be [t, vx, vy, vz] (4 numbers), got " +
+               (r ? std::to_string(r->size()) + " numbers" : type_name(rn)));
+    double v[4];
+    for (std::size_t j = 0; j < 4; ++j) {
+      const toml::node& e = *r->get(j);
+      if (!e.is_number())
+        fail(&e, hk,
+             row + " must be [t, vx, vy, vz] (4 numbers), element " + std::to_string(j + 1) +
+                 " is " + type_name(e));
+      v[j] = e.value<double>().value();
+      if (!std::isfinite(v[j])) fail(&e, hk, row + " must hold finite numbers");
+    }
+    if (i == 0 && v[0] != 0.0)
+      fail(&rn, hk, "the first row must be at t = 0, got t = " + format_number(v[0]));
+    if (i > 0 && !(v[0] > history.back().time))
+      fail(&rn, hk,
+           "times must increase strictly: " + row + " has t = " + format_number(v[0]) +
+               " after t = " + format_number(history.back().time));
+    history.push_back({v[0], Vec3(v[1], v[2], v[3])});
+  }
+  return history;
+}
+
+toml::array velocity_history_rows(const std::vector<VelocityPoint>& history) {
+  toml::array rows;
+  for (const VelocityPoint& q : history)
+    rows.push_back(toml::array{q.time, q.velocity.x(), q.velocity.y(), q.velocity.z()});
+  return rows;
+}
+
 void Reader::read_walls(const toml::table& root, ModelSpec& spec, toml::array& out,
                         std::set<std::string>& names) const {
   int index = 0;
@@ -25,45 +76,7 @@ void Reader::read_walls(const toml::table& root, ModelSpec& spec, toml::array& o
       w.normal = n->normalized();
     }
     w.velocity = opt_vec3(t, "velocity", p).value_or(Vec3::Zero());
-    if (const toml::node* hn = t.get("velocity_history")) {
-      const std::string hk = dotted(p, "velocity_history");
-      if (t.contains("velocity"))
-        fail(hn, hk,
-             "give either 'velocity' (constant) or 'velocity_history' (piecewise linear), not "
-             "both");
-      const toml::array* rows = hn->as_array();
-      if (!rows || rows->empty())
-        fail(hn, hk,
-             "expected a non-empty array of rows [t, vx, vy, vz], e.g. [[0, 0, 0, 0], [1e-3, 0, "
-             "0, -0.1]], got " +
-                 (rows ? std::string("an empty array") : type_name(*hn)));
-      for (std::size_t i = 0; i < rows->size(); ++i) {
-        const toml::node& rn = *rows->get(i);
-        const std::string row = "row " + std::to_string(i + 1);
-        const toml::array* r = rn.as_array();
-        if (!r || r->size() != 4)
-          fail(&rn, hk,
-               row + " must be [t, vx, vy, vz] (4 numbers), got " +
-                   (r ? std::to_string(r->size()) + " numbers" : type_name(rn)));
-        double v[4];
-        for (std::size_t j = 0; j < 4; ++j) {
-          const toml::node& e = *r->get(j);
-          if (!e.is_number())
-            fail(&e, hk,
-                 row + " must be [t, vx, vy, vz] (4 numbers), element " + std::to_string(j + 1) +
-                     " is " + type_name(e));
-          v[j] = e.value<double>().value();
-          if (!std::isfinite(v[j])) fail(&e, hk, row + " must hold finite numbers");
-        }
-        if (i == 0 && v[0] != 0.0)
-          fail(&rn, hk, "the first row must be at t = 0, got t = " + format_number(v[0]));
-        if (i > 0 && !(v[0] > w.velocity_history.back().time))
-          fail(&rn, hk,
-               "times must increase strictly: " + row + " has t = " + format_number(v[0]) +
-                   " after t = " + format_number(w.velocity_history.back().time));
-        w.velocity_history.push_back({v[0], Vec3(v[1], v[2], v[3])});
-      }
-    }
+    w.velocity_history = read_velocity_history(t, p);
     if (const toml::node* fn = t.get("force_history")) {
       const std::string fk = dotted(p, "force_history");
       if (t.contains("velocity_history"))
@@ -113,10 +126,7 @@ void Reader::read_walls(const toml::table& root, ModelSpec& spec, toml::array& o
     if (w.velocity_history.empty()) {
       o.insert_or_assign("velocity", toml::array{w.velocity.x(), w.velocity.y(), w.velocity.z()});
     } else {
-      toml::array rows;
-      for (const VelocityPoint& q : w.velocity_history)
-        rows.push_back(toml::array{q.time, q.velocity.x(), q.velocity.y(), q.velocity.z()});
-      o.insert_or_assign("velocity_history", std::move(rows));
+      o.insert_or_assign("velocity_history", velocity_history_rows(w.velocity_history));
     }
     o.insert_or_assign("friction", w.friction);
     if (w.penalty_factor > 0.0) o.insert_or_assign("penalty_factor", w.penalty_factor);

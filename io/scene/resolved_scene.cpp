@@ -110,7 +110,7 @@ std::string resolved_scene_text(const toml::table& root) {
       write_toml_value(os, v);
       os << "\n";
     }
-  for (const char* section : {"simulation", "materials", "bodies", "packings", "walls",
+  for (const char* section : {"simulation", "materials", "bodies", "packings", "walls", "tubes",
                               "constraints", "contact", "compaction"}) {
     const toml::node* n = root.get(section);
     if (!n) continue;

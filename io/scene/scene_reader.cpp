@@ -34,8 +34,8 @@ namespace scene {
 
 ModelSpec Reader::read(const toml::table& root, const std::string& stem, toml::table& resolved) {
   check_keys(root, "",
-             {"title", "simulation", "materials", "bodies", "packings", "walls", "constraints",
-              "contact", "compaction", "output"});
+             {"title", "simulation", "materials", "bodies", "packings", "walls", "tubes",
+              "constraints", "contact", "compaction", "output"});
   ModelSpec spec;
   spec.title = opt_string(root, "title", "").value_or(stem);
   resolved.insert_or_assign("title", spec.title);
@@ -49,6 +49,8 @@ ModelSpec Reader::read(const toml::table& root, const std::string& stem, toml::t
   toml::array packings;
   read_packings(root, spec, packings, names);
   read_walls(root, spec, walls, names);
+  toml::array tubes;
+  read_tubes(root, spec, tubes, names);
   read_constraints(root, spec, constraints);
   toml::table contact;
   read_contact(root, spec, contact);
@@ -62,6 +64,7 @@ ModelSpec Reader::read(const toml::table& root, const std::string& stem, toml::t
   resolved.insert_or_assign("bodies", std::move(bodies));
   if (!packings.empty()) resolved.insert_or_assign("packings", std::move(packings));
   if (!walls.empty()) resolved.insert_or_assign("walls", std::move(walls));
+  if (!tubes.empty()) resolved.insert_or_assign("tubes", std::move(tubes));
   if (!constraints.empty()) resolved.insert_or_assign("constraints", std::move(constraints));
   resolved.insert_or_assign("contact", std::move(contact));
   if (spec.compaction) resolved.insert_or_assign("compaction", std::move(compaction));

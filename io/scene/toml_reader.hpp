@@ -5,8 +5,8 @@
 // fills the ModelSpec and the resolved scene. Its generic helpers (toml_reader.cpp) look values
 // up by key and throw InputError naming the file, line, column and dotted key; every section has
 // its reader in its own file (read_simulation.cpp, read_materials.cpp, read_bodies.cpp,
-// read_walls.cpp, read_packings.cpp, read_compaction.cpp), the overrides are in overrides.cpp,
-// and Reader::read (scene_reader.cpp) calls the sections in order.
+// read_walls.cpp, read_tubes.cpp, read_packings.cpp, read_compaction.cpp), the overrides are in
+// overrides.cpp, and Reader::read (scene_reader.cpp) calls the sections in order.
 #include <toml++/toml.h>
 #include <cstdint>
 #include <filesystem>
@@ -35,6 +35,8 @@ std::string lower(std::string s);
 std::string type_name(const toml::node& n);
 // Shortest round-trip form.
 std::string format_number(double v);
+// A velocity history as the resolved scene writes it: rows [t, vx, vy, vz].
+toml::array velocity_history_rows(const std::vector<VelocityPoint>& history);
 
 // ---------------------------------------------------------------------------------------------
 // The reader: walks the (overridden) TOML tree, checks it, fills the ModelSpec and the resolved
@@ -108,6 +110,13 @@ class Reader {
   Tet10Mesh read_mesh(const toml::table& mesh, const std::string& prefix, toml::table& out,
                       NodeSets* node_sets = nullptr) const;
   void read_walls(const toml::table& root, ModelSpec& spec, toml::array& out,
+                  std::set<std::string>& names) const;
+  // t.velocity_history (empty when absent): rows [t, vx, vy, vz], the first at t = 0, times
+  // increasing; an error when t also has a constant `velocity`.
+  std::vector<VelocityPoint> read_velocity_history(const toml::table& t,
+                                                   const std::string& prefix) const;
+  // [[tubes]]: each a polygonal tube of bounded walls, moving as a whole (lifted off a column).
+  void read_tubes(const toml::table& root, ModelSpec& spec, toml::array& out,
                   std::set<std::string>& names) const;
   void read_constraints(const toml::table& root, ModelSpec& spec, toml::array& out) const;
   RegionSpec read_region(const toml::table& c, const std::string& prefix, toml::table& out) const;

@@ -17,8 +17,9 @@ Per scene and side: steps, user CPU seconds (GNU time), the largest |energy bala
 history.csv, the deepest contact overlap per element size (bodies and walls), and the scene's
 results as summary.json has them (restitution of bodies that rebound, the largest plastic
 strain, the final axial length of the Taylor bar's rod, the compaction columns' largest
-relative density). Prints a Markdown table for docs/PERFORMANCE.md, kept in OUT/table.md as it
-grows (a rerun with the same --out measures only the scenes not in it yet).
+relative density). Prints a Markdown table for docs/PERFORMANCE.md; each scene's figures are
+kept in OUT/NAME.json as soon as it is measured (a rerun with the same --out measures only the
+scenes not measured yet, then prints the whole table).
 
 The three multi-body scenes (armour_layer, compaction_64_spheres, powder_compaction) take from
 half an hour to hours each way; they are left out of the default list and measured by their long
@@ -125,21 +126,12 @@ def main():
     a = ap.parse_args()
     out = os.path.abspath(a.out)
     os.makedirs(out, exist_ok=True)
-    # one row per scene, written as soon as the scene is done, so a long sweep that is cut
-    # short keeps what it measured (and a rerun skips the scenes already in the table)
-    table = os.path.join(out, "table.md")
-    done = set()
-    if os.path.exists(table):
-        done = {line.split("|")[1].strip() for line in open(table) if line.startswith("| ")}
-    else:
-        with open(table, "w") as f:
-            f.write("| scene | steps before | after | CPU s before | after | max energy balance "
-                    "error before / after | deepest overlap per element size before / after | "
-                    "results before | after |\n")
-            f.write("| " + " | ".join(["---"] * 9) + " |\n")
+    # each scene's figures are kept in OUT/NAME.json as soon as it is done, so a long sweep
+    # that is cut short keeps what it measured and a rerun measures only what is missing
     with tempfile.TemporaryDirectory() as old_dir:
         for name in a.scenes.split(","):
-            if name in done:
+            kept = os.path.join(out, f"{name}.json")
+            if os.path.exists(kept):
                 continue
             path, text = old_scene(name, a.before_commit, old_dir)
             cb, b = run(a.femdem, path, f"{out}/{name}_before", a.threads, old_default_sets(text))
@@ -147,11 +139,21 @@ def main():
                          f"{out}/{name}_after", a.threads, [])
             print(f"{name}: {b['steps']} -> {af['steps']} steps, {cb:.1f} -> {ca:.1f} s CPU",
                   file=sys.stderr, flush=True)
-            with open(table, "a") as f:
-                f.write(f"| {name} | {b['steps']:,} | {af['steps']:,} | {cb:.1f} | {ca:.1f} | "
-                        f"{b['balance']:.1e} / {af['balance']:.1e} | {b['overlap']:.3f} / "
-                        f"{af['overlap']:.3f} | {b['results']} | {af['results']} |\n")
-    sys.stdout.write(open(table).read())
+            with open(kept, "w") as f:
+                json.dump({"before": dict(b, cpu=cb), "after": dict(af, cpu=ca)}, f)
+    print("| scene | steps before | after | CPU s before | after | max energy balance error "
+          "before / after | deepest overlap per element size before / after | results before |"
+          " after |")
+    print("| " + " | ".join(["---"] * 9) + " |")
+    for name in a.scenes.split(","):
+        kept = os.path.join(out, f"{name}.json")
+        if not os.path.exists(kept):
+            continue
+        r = json.load(open(kept))
+        b, af = r["before"], r["after"]
+        print(f"| {name} | {b['steps']:,} | {af['steps']:,} | {b['cpu']:.1f} | {af['cpu']:.1f} | "
+              f"{b['balance']:.1e} / {af['balance']:.1e} | {b['overlap']:.1e} / "
+              f"{af['overlap']:.1e} | {b['results']} | {af['results']} |")
 
 if __name__ == "__main__":
     main()
