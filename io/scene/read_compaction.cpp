@@ -60,21 +60,8 @@ void Reader::read_compaction(const toml::table& root, ModelSpec& spec, toml::tab
       fail(t.contains("die_area") ? t.get("die_area") : t.get("die_perimeter"), p,
            "die_area and die_perimeter follow from 'die' (give them only with 'die_walls')");
     const double r = positive(d, "radius", dp, std::nullopt, &d);
-    const std::int64_t sides = opt_integer(d, "sides", dp).value_or(24);
-    if (sides < 3 || sides > 1024)
-      fail(d.get("sides"), dotted(dp, "sides"),
-           "must be an integer in [3, 1024], got " + std::to_string(sides));
-    const double mu = number(d, "friction", dp, 0.0, &d);
-    if (mu < 0.0)
-      fail(d.get("friction"), dotted(dp, "friction"),
-           "must not be negative, got " + format_number(mu));
-    // as a wall's: > 0 its own, 0 the [contact] one, < 0 "auto"
-    const std::optional<double> given = opt_penalty_factor(d, dp);
-    const double pf = !given ? 0.0 : *given > 0.0 ? *given : -1.0;
-    const double damping = number(d, "damping", dp, 0.0, &d);
-    if (damping < 0.0 || damping > 1.0)
-      fail(d.get("damping"), dotted(dp, "damping"),
-           "must be a fraction of critical damping in [0, 1], got " + format_number(damping));
+    const int sides = read_polygon_sides(d, dp);
+    const WallSurface surface = read_wall_surface(d, dp);
     const auto height = opt_number(d, "height", dp);
     if (height && !(*height > 0.0))
       fail(d.get("height"), dotted(dp, "height"),
@@ -84,7 +71,7 @@ void Reader::read_compaction(const toml::table& root, ModelSpec& spec, toml::tab
     die.centre = spec.walls[c.bottom].point;
     die.axis = axis;
     die.radius = r;
-    die.sides = static_cast<int>(sides);
+    die.sides = sides;
     die.angle = angle;
     die.to = height;  // open at the bottom's side: the bottom wall closes it
     for (WallSpec& w : polygon_walls("die", die)) {
@@ -92,9 +79,9 @@ void Reader::read_compaction(const toml::table& root, ModelSpec& spec, toml::tab
         fail(dn, dp,
              "makes walls named die_1 ... die_" + std::to_string(sides) + ", but '" + w.name +
                  "' is already the name of a body or wall");
-      w.friction = mu;
-      w.penalty_factor = pf;
-      w.damping = damping;
+      w.friction = surface.friction;
+      w.penalty_factor = surface.penalty_factor;
+      w.damping = surface.damping;
       c.die_walls.push_back(static_cast<int>(spec.walls.size()));
       spec.walls.push_back(w);
     }
@@ -103,10 +90,7 @@ void Reader::read_compaction(const toml::table& root, ModelSpec& spec, toml::tab
     toml::table od;
     od.insert_or_assign("radius", r);
     od.insert_or_assign("sides", sides);
-    od.insert_or_assign("friction", mu);
-    if (pf > 0.0) od.insert_or_assign("penalty_factor", pf);
-    if (pf < 0.0) od.insert_or_assign("penalty_factor", "auto");
-    od.insert_or_assign("damping", damping);
+    surface.write(od);
     if (height) od.insert_or_assign("height", *height);
     od.insert_or_assign("angle", angle);
     o.insert_or_assign("die", std::move(od));

@@ -33,38 +33,25 @@ void Reader::read_tubes(const toml::table& root, ModelSpec& spec, toml::array& o
       tube.axis = a->normalized();
     }
     tube.radius = positive(t, "radius", p, std::nullopt, &t);
-    const std::int64_t sides = opt_integer(t, "sides", p).value_or(24);
-    if (sides < 3 || sides > 1024)
-      fail(t.get("sides"), dotted(p, "sides"),
-           "must be an integer in [3, 1024], got " + std::to_string(sides));
-    tube.sides = static_cast<int>(sides);
+    tube.sides = read_polygon_sides(t, p);
     const double height = positive(t, "height", p, std::nullopt, &t);
     tube.from = 0.0;
     tube.to = height;
     const double thickness = positive(t, "thickness", p, 0.02 * tube.radius, &t);
     tube.angle = number(t, "angle", p, 0.0, &t);
-    const double mu = number(t, "friction", p, 0.0, &t);
-    if (mu < 0.0)
-      fail(t.get("friction"), dotted(p, "friction"),
-           "must not be negative, got " + format_number(mu));
-    const std::optional<double> given = opt_penalty_factor(t, p);
-    const double pf = !given ? 0.0 : *given > 0.0 ? *given : -1.0;
-    const double damping = number(t, "damping", p, 0.0, &t);
-    if (damping < 0.0 || damping > 1.0)
-      fail(t.get("damping"), dotted(p, "damping"),
-           "must be a fraction of critical damping in [0, 1], got " + format_number(damping));
+    const WallSurface surface = read_wall_surface(t, p);
     const Vec3 velocity = opt_vec3(t, "velocity", p).value_or(Vec3::Zero());
     const std::vector<VelocityPoint> history = read_velocity_history(t, p);
     for (WallSpec& w : polygon_walls(name, tube)) {
       if (!names.insert(w.name).second)
         fail(t.get("name") ? t.get("name") : &t, dotted(p, "name"),
              "tube '" + name + "' makes walls named " + name + "_1 ... " + name + "_" +
-                 std::to_string(sides) + ", but '" + w.name +
+                 std::to_string(tube.sides) + ", but '" + w.name +
                  "' is already the name of a body or wall");
       w.thickness = thickness;
-      w.friction = mu;
-      w.penalty_factor = pf;
-      w.damping = damping;
+      w.friction = surface.friction;
+      w.penalty_factor = surface.penalty_factor;
+      w.damping = surface.damping;
       w.velocity = velocity;
       w.velocity_history = history;
       spec.walls.push_back(w);
@@ -74,14 +61,11 @@ void Reader::read_tubes(const toml::table& root, ModelSpec& spec, toml::array& o
     o.insert_or_assign("centre", toml::array{tube.centre.x(), tube.centre.y(), tube.centre.z()});
     o.insert_or_assign("axis", toml::array{tube.axis.x(), tube.axis.y(), tube.axis.z()});
     o.insert_or_assign("radius", tube.radius);
-    o.insert_or_assign("sides", sides);
+    o.insert_or_assign("sides", tube.sides);
     o.insert_or_assign("height", height);
     o.insert_or_assign("thickness", thickness);
     o.insert_or_assign("angle", tube.angle);
-    o.insert_or_assign("friction", mu);
-    if (pf > 0.0) o.insert_or_assign("penalty_factor", pf);
-    if (pf < 0.0) o.insert_or_assign("penalty_factor", "auto");
-    o.insert_or_assign("damping", damping);
+    surface.write(o);
     if (history.empty())
       o.insert_or_assign("velocity", toml::array{velocity.x(), velocity.y(), velocity.z()});
     else

@@ -58,6 +58,36 @@ toml::array velocity_history_rows(const std::vector<VelocityPoint>& history) {
   return rows;
 }
 
+Reader::WallSurface Reader::read_wall_surface(const toml::table& t, const std::string& p) const {
+  WallSurface w;
+  w.friction = number(t, "friction", p, 0.0, &t);
+  if (w.friction < 0.0)
+    fail(t.get("friction"), dotted(p, "friction"),
+         "must not be negative, got " + format_number(w.friction));
+  const std::optional<double> given = opt_penalty_factor(t, p);
+  w.penalty_factor = !given ? 0.0 : *given > 0.0 ? *given : -1.0;
+  w.damping = number(t, "damping", p, 0.0, &t);
+  if (w.damping < 0.0 || w.damping > 1.0)
+    fail(t.get("damping"), dotted(p, "damping"),
+         "must be a fraction of critical damping in [0, 1], got " + format_number(w.damping));
+  return w;
+}
+
+void Reader::WallSurface::write(toml::table& out) const {
+  out.insert_or_assign("friction", friction);
+  if (penalty_factor > 0.0) out.insert_or_assign("penalty_factor", penalty_factor);
+  if (penalty_factor < 0.0) out.insert_or_assign("penalty_factor", "auto");
+  out.insert_or_assign("damping", damping);
+}
+
+int Reader::read_polygon_sides(const toml::table& t, const std::string& p) const {
+  const std::int64_t sides = opt_integer(t, "sides", p).value_or(24);
+  if (sides < 3 || sides > 1024)
+    fail(t.get("sides"), dotted(p, "sides"),
+         "must be an integer in [3, 1024], got " + std::to_string(sides));
+  return static_cast<int>(sides);
+}
+
 void Reader::read_walls(const toml::table& root, ModelSpec& spec, toml::array& out,
                         std::set<std::string>& names) const {
   int index = 0;

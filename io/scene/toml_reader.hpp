@@ -115,6 +115,16 @@ class Reader {
   // increasing; an error when t also has a constant `velocity`.
   std::vector<VelocityPoint> read_velocity_history(const toml::table& t,
                                                    const std::string& prefix) const;
+  // What a generated set of walls shares (a die's, a tube's): friction (>= 0), penalty factor
+  // (> 0 its own, 0 the [contact] one, < 0 "auto") and damping (in [0, 1]), read from t and
+  // written back to the resolved table by `write`.
+  struct WallSurface {
+    double friction = 0.0, penalty_factor = 0.0, damping = 0.0;
+    void write(toml::table& out) const;
+  };
+  WallSurface read_wall_surface(const toml::table& t, const std::string& prefix) const;
+  // t.sides of a polygonal die or tube: an integer in [3, 1024], 24 when absent.
+  int read_polygon_sides(const toml::table& t, const std::string& prefix) const;
   // [[tubes]]: each a polygonal tube of bounded walls, moving as a whole (lifted off a column).
   void read_tubes(const toml::table& root, ModelSpec& spec, toml::array& out,
                   std::set<std::string>& names) const;

@@ -138,8 +138,18 @@ void print_scene_summary(const SceneFile& scene) {
             "{:g} N from t = {:g} s on\n",
             w.mass, w.force_history.size(), w.force_history.front().force,
             w.force_history.back().force, w.force_history.back().time);
-      if (w.bounded)
-        fmt::print("    acts only up to {:g} m along {}\n", w.bound_max, vec(w.bound_axis));
+      if (w.bounded) {
+        if (std::isfinite(w.bound_min))
+          fmt::print("    acts from {:g} to {:g} m along {} (the extent moves with the wall)\n",
+                     w.bound_min, w.bound_max, vec(w.bound_axis));
+        else
+          fmt::print("    acts only up to {:g} m along {}\n", w.bound_max, vec(w.bound_axis));
+      }
+      if (std::isfinite(w.thickness))
+        fmt::print(
+            "    a plate {:g} m thick: a node further behind than half of it is pushed "
+            "out through its back\n",
+            w.thickness);
     }
     fmt::print("\n");
   }
