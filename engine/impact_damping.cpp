@@ -8,14 +8,12 @@
 
 namespace femdem {
 
-double damp_impacts(Model& m, double ratio, const std::vector<ContactPatch>& patches,
-                    const std::vector<double>& accel, double half_dt, ImpactDampingScratch& s) {
+void prepare_patch_loads(const Model& m, const std::vector<ContactPatch>& patches,
+                         const std::vector<double>& accel, double half_dt, PatchLoads& s) {
   auto free_body = [&](std::int32_t b) { return b >= 0 && !m.bodies[b].fixed; };
-  // the rigid motions of the free bodies of the patches that act, each a pass over its nodes:
-  // in parallel over bodies (each independent, so the same bits with any thread count)
   std::fill(s.known.begin(), s.known.end(), 0);
   for (const ContactPatch& p : patches) {
-    if (!(p.force_on_a.norm() > 0.0) || !(p.weight > 0.0) || !(p.stiffness > 0.0)) continue;
+    if (!patch_acts(p)) continue;
     for (const std::int32_t b : {p.body_a, p.body_b})
       if (free_body(b)) s.known[b] = 1;
   }
@@ -27,27 +25,27 @@ double damp_impacts(Model& m, double ratio, const std::vector<ContactPatch>& pat
     s.force[b].setZero();
     s.moment[b].setZero();
   }
-  auto motion = [&](std::int32_t b) -> const RigidMotion& { return s.rigid[b]; };
-  auto load = [&](std::int32_t b, const Vec3& x, const Vec3& f) {
-    s.force[b] += f;
-    s.moment[b] += (x - s.rigid[b].centre).cross(f);
-  };
+}
+
+double damp_impacts(Model& m, double ratio, const std::vector<ContactPatch>& patches,
+                    PatchLoads& s) {
+  auto free_body = [&](std::int32_t b) { return b >= 0 && !m.bodies[b].fixed; };
   double power = 0.0;
   for (const ContactPatch& p : patches) {
+    if (!patch_acts(p)) continue;
     const double F = p.force_on_a.norm();
-    if (!(F > 0.0) || !(p.weight > 0.0) || !(p.stiffness > 0.0)) continue;
     const Vec3 n = p.force_on_a / F;  // from b towards a
     const Vec3 x = p.point();
     Vec3 va = Vec3::Zero(), vb = Vec3::Zero();
     double inverse_mass = 0.0;
     if (free_body(p.body_a)) {
-      const RigidMotion& r = motion(p.body_a);
+      const RigidMotion& r = s.rigid[p.body_a];
       if (!(r.mass > 0.0)) continue;
       va = r.velocity_at(x);
       inverse_mass += r.inverse_mass_along(x, n);
     }
     if (free_body(p.body_b)) {
-      const RigidMotion& r = motion(p.body_b);
+      const RigidMotion& r = s.rigid[p.body_b];
       if (!(r.mass > 0.0)) continue;
       vb = r.velocity_at(x);
       inverse_mass += r.inverse_mass_along(x, n);
@@ -60,18 +58,22 @@ double damp_impacts(Model& m, double ratio, const std::vector<ContactPatch>& pat
     const double fd = std::max(-c * vn, -F);
     power += fd * vn;
     const Vec3 f = fd * n;
-    if (free_body(p.body_a)) load(p.body_a, x, f);
+    if (free_body(p.body_a)) s.add(p.body_a, x, f);
     if (free_body(p.body_b)) {
-      load(p.body_b, x, -f);
+      s.add(p.body_b, x, -f);
     } else if (p.body_b < 0) {
       m.walls[static_cast<std::size_t>(-1 - p.body_b)].force -= f;
     }
   }
+  return power;
+}
+
+void apply_patch_loads(Model& m, PatchLoads& s) {
+  const auto nb = static_cast<std::int64_t>(m.bodies.size());
 #pragma omp parallel for schedule(dynamic, 1) if (nb > 1 && m.node_count > kParallelMinElements)
   for (std::int64_t b = 0; b < nb; ++b)
     if (s.known[b] && s.rigid[b].mass > 0.0)
       add_rigid_load(m, m.bodies[b], s.rigid[b], s.force[b], s.moment[b], m.f_contact);
-  return power;
 }
 
 }  // namespace femdem

@@ -21,6 +21,10 @@
 // linear contact a damping ratio xi gives the restitution e = exp(-pi xi / sqrt(1 - xi^2)). It
 // never pulls: the damping force is kept above minus the patch's elastic force, so a separating
 // patch is not held. Its work, f v_n <= 0, is contact dissipation.
+//
+// The patch loads of one step (this damping and the rolling resistance,
+// engine/rolling_resistance.hpp) share the bodies' rigid motions and are put on the nodes
+// together: prepare_patch_loads, then each load, then apply_patch_loads.
 #include <cstdint>
 #include <vector>
 
@@ -30,27 +34,46 @@
 
 namespace femdem {
 
-// Adds the damping forces of the patches to m.f_contact (and their reactions to the walls'
-// force) and returns their power (<= 0). The velocities are those of the coming full step,
-// predicted from the half-step velocities and the last accelerations (v + half_dt accel): the
-// integrator's kinetic energy sees a force work with the full-step velocity, and a dashpot taken
-// at the half step would be off by c dt / 2m of its work, 1 % for a strong impact damping.
-// The per-body work space of damp_impacts, kept between steps (sized to the bodies once).
-struct ImpactDampingScratch {
-  std::vector<RigidMotion> rigid;   // the rigid motions computed so far this step
+// The per-body work space of the patch loads, kept between steps (sized to the bodies once).
+struct PatchLoads {
+  std::vector<RigidMotion> rigid;   // the rigid motions computed this step
   std::vector<std::uint8_t> known;  // rigid[b] is this step's
-  std::vector<Vec3> force, moment;  // the damping loads on each body, summed over its patches
+  std::vector<Vec3> force, moment;  // the loads on each body, summed over its patches
   void resize(std::size_t bodies) {
     rigid.assign(bodies, RigidMotion{});
     known.assign(bodies, 0);
     force.assign(bodies, Vec3::Zero());
     moment.assign(bodies, Vec3::Zero());
   }
+  // adds force f at point x to body b's load
+  void add(std::int32_t b, const Vec3& x, const Vec3& f) {
+    force[b] += f;
+    moment[b] += (x - rigid[b].centre).cross(f);
+  }
 };
 
-// Each body's patches are summed into one resultant and moment first, so that its nodes are
-// visited once however many bodies and walls it touches.
+// The rigid motions of the free bodies of the patches that act (each a pass over its nodes, in
+// parallel over bodies: the same bits with any thread count), from the velocities of the coming
+// full step, predicted from the half-step velocities and the last accelerations (v + half_dt
+// accel): the integrator's kinetic energy sees a force work with the full-step velocity, and a
+// dashpot taken at the half step would be off by c dt / 2m of its work, 1 % for a strong impact
+// damping. The loads start at zero.
+void prepare_patch_loads(const Model& m, const std::vector<ContactPatch>& patches,
+                         const std::vector<double>& accel, double half_dt, PatchLoads& s);
+
+// Adds the impact damping forces of the patches to the loads (and their reactions to the
+// walls' force) and returns their power (<= 0). Each body's patches are summed into one
+// resultant and moment, so that its nodes are visited once however many bodies and walls it
+// touches.
 double damp_impacts(Model& m, double ratio, const std::vector<ContactPatch>& patches,
-                    const std::vector<double>& accel, double half_dt, ImpactDampingScratch& s);
+                    PatchLoads& s);
+
+// Puts each body's summed load on its nodes as a rigid load (added to m.f_contact).
+void apply_patch_loads(Model& m, PatchLoads& s);
+
+// Whether a patch acts (it has a normal force and a stiffness).
+inline bool patch_acts(const ContactPatch& p) {
+  return p.force_on_a.norm() > 0.0 && p.weight > 0.0 && p.stiffness > 0.0;
+}
 
 }  // namespace femdem

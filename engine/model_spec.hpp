@@ -171,6 +171,11 @@ struct ContactSettings {
   // acting on the bodies' rigid motion (engine/impact_damping.hpp): sets the restitution of an
   // impact, e = exp(-pi xi / sqrt(1 - xi^2)) for a linear contact. 0: elastic impacts.
   double impact_damping = 0.0;
+  // Rolling resistance coefficient mu_r (engine/rolling_resistance.hpp): a moment mu_r R N
+  // against the relative rolling at every contact patch. 0: off.
+  double rolling_resistance = 0.0;
+  // Whether contacts are summed into patches for loads on the rigid motions.
+  bool patch_loads() const { return impact_damping > 0.0 || rolling_resistance > 0.0; }
   // The deepest overlap allowed at t = 0, between bodies or behind a wall, as a fraction of the
   // element size there (engine/initial_overlap.hpp): a packing's round-off, not a scene error.
   double initial_overlap = 0.01;

@@ -11,6 +11,7 @@
 #include "engine/errors.hpp"
 #include "engine/ordered_sum.hpp"
 #include "engine/parallel_threshold.hpp"
+#include "engine/rolling_resistance.hpp"
 #include "materials/symmetric_eigen3.hpp"
 
 namespace femdem {
@@ -28,7 +29,7 @@ Simulation::Simulation(Model model)
     : model_(std::move(model)),
       kernels_(compile_kernels(model_.materials)),
       element_pass_(model_, kernels_),
-      wall_contact_(model_, model_.contact.impact_damping > 0.0),
+      wall_contact_(model_, model_.contact.patch_loads()),
       body_contact_(model_) {
   const auto nn = static_cast<std::size_t>(model_.node_count);
   const auto ne = static_cast<std::size_t>(model_.element_count);
@@ -86,8 +87,8 @@ Simulation::Simulation(Model model)
         1e-6 * cm.density * cm.wave_speed * cm.wave_speed * (w[0] + w[1] + w[2] + w[3]);
   }
   elem_scratch_.assign(ne, 0.0);
-  if (model_.contact.impact_damping > 0.0) {
-    impact_scratch_.resize(model_.bodies.size());
+  if (model_.contact.patch_loads()) {
+    patch_loads_.resize(model_.bodies.size());
     body_contact_.collect_patches(true);
   }
   compute_forces(0.0);
@@ -212,13 +213,18 @@ void Simulation::compute_forces(double step_dt) {
   ContactModel* const contacts[] = {&wall_contact_, &body_contact_};
   for (ContactModel* c : contacts)
     if (c->active()) c->compute(m, step_dt, m.f_contact, sums);
-  // 3c. impact damping on the bodies' rigid motions, per contact patch
-  if (m.contact.impact_damping > 0.0) {
+  // 3c. impact damping and rolling resistance on the bodies' rigid motions, per contact patch
+  if (m.contact.patch_loads()) {
     patches_.clear();
     body_contact_.append_patches(patches_);
     wall_contact_.append_patches(patches_);
-    sums.damping_power +=
-        damp_impacts(m, m.contact.impact_damping, patches_, accel_, 0.5 * step_dt, impact_scratch_);
+    prepare_patch_loads(m, patches_, accel_, 0.5 * step_dt, patch_loads_);
+    if (m.contact.impact_damping > 0.0)
+      sums.damping_power += damp_impacts(m, m.contact.impact_damping, patches_, patch_loads_);
+    if (m.contact.rolling_resistance > 0.0)
+      sums.damping_power +=
+          resist_rolling(m, m.contact.rolling_resistance, patches_, step_dt, patch_loads_);
+    apply_patch_loads(m, patch_loads_);
   }
   const double contact = sums.energy, friction_dissipated = sums.friction_dissipated,
                damping_power = sums.damping_power;

@@ -157,10 +157,10 @@ class Simulation {
   std::vector<double> body_added_at_start_;  // per body: what the scaling before step 1 added
   WallContact wall_contact_;
   BodyContact body_contact_;
-  // impact damping (contact.impact_damping > 0): the body-wall patches (per body x wall), all
-  // patches of the step, and the rigid motions of the bodies in them
+  // impact damping and rolling resistance (ContactSettings::patch_loads()): all patches of the
+  // step, and the rigid motions of the bodies in them with their loads
   std::vector<ContactPatch> patches_;
-  ImpactDampingScratch impact_scratch_;
+  PatchLoads patch_loads_;
   std::vector<double> elem_viscous_power_;    // per element, this step
   mutable std::vector<double> elem_scratch_;  // per element, for bodies_volume
   mutable std::vector<double> sum_scratch_;   // chunk sums of ordered_sum

@@ -340,7 +340,7 @@ void Reader::read_contact(const toml::table& root, ModelSpec& spec, toml::table&
     const toml::table& t = require_table(n, "contact");
     check_keys(t, "contact",
                {"law", "wall_law", "penalty_factor", "friction", "impact_damping",
-                "initial_overlap", "pairs"});
+                "rolling_resistance", "initial_overlap", "pairs"});
     c.law = registered_name<BodyPairLaw>(law_name(t, "law", c.law, body_pair_law_names()));
     c.wall_law = registered_name<WallLaw>(law_name(t, "wall_law", c.wall_law, wall_law_names()));
     c.penalty_factor = opt_penalty_factor(t, "contact").value_or(c.penalty_factor);
@@ -353,6 +353,11 @@ void Reader::read_contact(const toml::table& root, ModelSpec& spec, toml::table&
       fail(t.get("impact_damping"), "contact.impact_damping",
            "must be a fraction of critical damping in [0, 1), got " +
                format_number(c.impact_damping));
+    c.rolling_resistance = number(t, "rolling_resistance", "contact", c.rolling_resistance, &t);
+    if (!(c.rolling_resistance >= 0.0 && c.rolling_resistance <= 1.0))
+      fail(t.get("rolling_resistance"), "contact.rolling_resistance",
+           "must be a coefficient in [0, 1] (the lever arm over the rolling radius), got " +
+               format_number(c.rolling_resistance));
     c.initial_overlap = number(t, "initial_overlap", "contact", c.initial_overlap, &t);
     if (!(c.initial_overlap >= 0.0 && c.initial_overlap <= 1.0))
       fail(t.get("initial_overlap"), "contact.initial_overlap",
@@ -408,6 +413,9 @@ void Reader::read_contact(const toml::table& root, ModelSpec& spec, toml::table&
     out.insert_or_assign("penalty_factor", "auto");
   out.insert_or_assign("friction", c.friction);
   out.insert_or_assign("impact_damping", c.impact_damping);
+  // written only when set, so that the scenes before it keep their resolved text (and the
+  // digest their checkpoints carry)
+  if (c.rolling_resistance > 0.0) out.insert_or_assign("rolling_resistance", c.rolling_resistance);
   out.insert_or_assign("initial_overlap", c.initial_overlap);
 }
 

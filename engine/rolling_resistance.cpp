@@ -1,0 +1,49 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "engine/rolling_resistance.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace femdem {
+
+double resist_rolling(const Model& m, double mu_r, const std::vector<ContactPatch>& patches,
+                      double dt, PatchLoads& s) {
+  auto free_body = [&](std::int32_t b) { return b >= 0 && !m.bodies[b].fixed; };
+  double power = 0.0;
+  for (const ContactPatch& p : patches) {
+    if (!patch_acts(p)) continue;
+    const double N = p.force_on_a.norm();
+    const Vec3 n = p.force_on_a / N;
+    const Vec3 x = p.point();
+    const bool a_free = free_body(p.body_a), b_free = free_body(p.body_b);
+    if (!a_free && !b_free) continue;
+    if ((a_free && !(s.rigid[p.body_a].mass > 0.0)) || (b_free && !(s.rigid[p.body_b].mass > 0.0)))
+      continue;
+    Vec3 w = Vec3::Zero();
+    double r_a = 0.0, r_b = HUGE_VAL;
+    if (a_free) {
+      w += s.rigid[p.body_a].angular_velocity;
+      r_a = (x - s.rigid[p.body_a].centre).norm();
+    }
+    if (b_free) {
+      w -= s.rigid[p.body_b].angular_velocity;
+      r_b = (x - s.rigid[p.body_b].centre).norm();
+    }
+    if (!a_free) std::swap(r_a, r_b);       // a fixed body or a wall on side a: R is b's
+    const Vec3 rolling = w - w.dot(n) * n;  // the spin about the normal is not rolling
+    const double omega = rolling.norm();
+    if (!(omega > 0.0)) continue;
+    const Vec3 e = rolling / omega;
+    const double radius = std::isfinite(r_b) ? r_a * r_b / (r_a + r_b) : r_a;
+    double inverse_inertia = 0.0;  // about e, of the two bodies together
+    if (a_free) inverse_inertia += e.dot(s.rigid[p.body_a].inertia_inverse * e);
+    if (b_free) inverse_inertia += e.dot(s.rigid[p.body_b].inertia_inverse * e);
+    const double M = std::min(mu_r * radius * N, 0.5 * omega / (inverse_inertia * dt));
+    power -= M * omega;
+    if (a_free) s.moment[p.body_a] -= M * e;
+    if (b_free) s.moment[p.body_b] += M * e;
+  }
+  return power;
+}
+
+}  // namespace femdem
