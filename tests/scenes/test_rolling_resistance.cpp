@@ -13,15 +13,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "support/history_csv.hpp"
-#include "support/run_command.hpp"
-
-namespace fs = std::filesystem;
+#include "support/scene_run.hpp"
 
 namespace {
 
@@ -33,10 +28,7 @@ struct Spin {
 };
 
 Spin spin(const std::string& name, double mu_r) {
-  const fs::path dir = fs::path(FEMDEM_TEST_TMP) / "rolling_resistance" / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  std::ofstream(dir / "scene.toml") << R"(title = "spinning ball"
+  const std::string text = R"(title = "spinning ball"
 [simulation]
 end_time = 0.04
 output_interval = 0.04
@@ -58,17 +50,10 @@ angular_velocity = [0, 100, 0]
 name = "floor"
 [contact]
 rolling_resistance = )" + std::to_string(mu_r) +
-                                               "\n";
-  const auto r = femdem::test::run_command(std::string("'") + FEMDEM_EXE + "' run '" +
-                                           (dir / "scene.toml").string() +
-                                           "' --quiet --no-plot --threads 1 --out '" +
-                                           (dir / "out").string() + "'");
-  EXPECT_EQ(r.code, 0) << r.output;
-  Spin s;
-  s.h = femdem::test::read_history(dir / "out" / "history.csv");
-  std::ifstream in(dir / "out" / "summary.json");
-  s.summary = nlohmann::json::parse(in);
-  return s;
+                           "\n";
+  const auto run = femdem::test::run_scene_text("rolling_resistance/" + name, text);
+  EXPECT_EQ(run.command.code, 0) << run.command.output;
+  return {run.history, run.summary};
 }
 
 }  // namespace

@@ -18,14 +18,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <string>
 
-#include "support/history_csv.hpp"
-#include "support/run_command.hpp"
-
-namespace fs = std::filesystem;
+#include "support/scene_run.hpp"
 
 namespace {
 
@@ -34,10 +29,7 @@ struct TubeRun {
 };
 
 TubeRun run_tube(const std::string& name, double friction) {
-  const fs::path dir = fs::path(FEMDEM_TEST_TMP) / "tube_lift" / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  std::ofstream(dir / "scene.toml") << R"(title = "tube lift"
+  const std::string text = R"(title = "tube lift"
 [simulation]
 end_time = 5e-3
 output_interval = 2.5e-3
@@ -66,16 +58,14 @@ sides = 4
 height = 6e-3
 thickness = 2e-4
 friction = )" + std::to_string(friction) +
-                                           R"(
+                           R"(
 velocity_history = [[0, 0, 0, 0], [1e-3, 0, 0, 0], [1.1e-3, 0, 0, 2]]
 [contact]
 initial_overlap = 0.05
 )";
-  const auto r = femdem::test::run_command(
-      std::string("'") + FEMDEM_EXE + "' run '" + (dir / "scene.toml").string() +
-      "' --quiet --no-plot --threads 1 --out '" + (dir / "out").string() + "'");
-  EXPECT_EQ(r.code, 0) << r.output;
-  return {femdem::test::read_history(dir / "out" / "history.csv")};
+  const auto run = femdem::test::run_scene_text("tube_lift/" + name, text);
+  EXPECT_EQ(run.command.code, 0) << run.command.output;
+  return {run.history};
 }
 
 // the tube's lift: at rest to 1 ms, 0 -> 2 m/s over 0.1 ms, then 2 m/s

@@ -206,6 +206,9 @@ void print_scene_summary(const SceneFile& scene) {
                m.contact.impact_damping,
                std::exp(-M_PI * m.contact.impact_damping /
                         std::sqrt(1.0 - m.contact.impact_damping * m.contact.impact_damping)));
+  if (m.contact.rolling_resistance > 0.0)
+    fmt::print(", rolling resistance {:g} (a moment {:g} R N against rolling)",
+               m.contact.rolling_resistance, m.contact.rolling_resistance);
   fmt::print("\n\n");
   // the model as a run builds it, with its first force evaluation: the overlaps at the start
   // (InputError) and the step
