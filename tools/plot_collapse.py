@@ -1,0 +1,146 @@
+#!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The deposit of a granular column collapse (scenes/column_collapse.toml) against the run-out
+laws of Lajeunesse et al. (2004).
+
+usage: tools/plot_collapse.py OUT [-o PNG] [--start T] [--repose DEG [DEG ...]]
+
+Reads OUT/history.csv (every grain's centre of mass in time) and OUT/results.h5 (the grains'
+nodes, first and last frame), and prints and draws:
+- the column at the start (`--start`, default the first history row: the time the tube starts
+  to rise is a better start when the grains settle first): R_i, the radius of the outermost
+  grain's surface, H_i, the height of the highest grain's surface, and a = H_i / R_i;
+- the deposit at the end: H_f, the highest node; R_f, the run-out, taken as the radius that
+  holds 98 % of the grains' centres plus a mean grain radius (a few grains that roll or bounce
+  off the front are not the deposit's edge); the azimuthally averaged profile h(r), the mean over
+  24 sectors of the highest node in each 1/2-grain-wide ring;
+- R(t) and H(t) the same way from the grains' centres in history.csv;
+- the laws: for a < 0.74, R_f / R_i = a / (2 mu) + sqrt(1 - a^2 / (12 mu^2)) with mu = tan of the
+  repose angle (a truncated cone whose top is undisturbed: H_f = H_i); for a > 0.74,
+  R_f / R_i = sqrt(3 a / 0.74) with H_f = 0.74 R_i (a cone). Repose angles by default 21 and
+  23.5 degrees (the beads' repose angle and the continuum papers' best-fit friction angle).
+The figure: the profile against the initial column and the laws' shapes, R and H in time, and
+the grains' centres at the end in (r, z), coloured by their height in the initial column (the
+layers of the papers' internal-structure test).
+"""
+import argparse
+import math
+import os
+import sys
+
+import numpy as np
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "python"))
+import femdem  # noqa: E402  (tools/python/femdem)
+
+SECTORS = 24
+KEEP = 0.98  # share of the grains' centres inside the run-out
+
+
+def grain_columns(history):
+    names = [b for b in femdem.body_names(history) if f"{b}.com_x" in history]
+    xyz = np.stack([np.stack([history[f"{b}.com_{c}"] for c in "xyz"], axis=-1) for b in names],
+                   axis=1)  # (rows, grains, 3)
+    return names, xyz
+
+
+def run_out(centres, grain_radius):
+    """R from the centres' radial distances (98 % inside) and H from the highest centre."""
+    r = np.hypot(centres[..., 0], centres[..., 1])
+    return np.quantile(r, KEEP, axis=-1) + grain_radius, centres[..., 2].max(axis=-1) + grain_radius
+
+
+def laws(a, repose_degrees):
+    """(label, R_f / R_i, the deposit's outline as ([r], [h]) in units of R_i)."""
+    out = []
+    for deg in repose_degrees:
+        mu = math.tan(math.radians(deg))
+        if a < 0.74:  # a truncated cone of slope mu whose top stays at H_i
+            r_f = a / (2 * mu) + math.sqrt(max(0.0, 1 - a * a / (12 * mu * mu)))
+            out.append((f"eq. 60, {deg:g} deg", r_f, ([0, r_f - a / mu, r_f], [a, a, 0])))
+        else:  # a cone of height 0.74 R_i
+            r_f = math.sqrt(3 * a / 0.74)
+            out.append(("eq. 61", r_f, ([0, r_f], [0.74, 0])))
+            break
+    return out
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("out")
+    ap.add_argument("-o", "--output", help="figure (default OUT/collapse.png)")
+    ap.add_argument("--start", type=float, default=None, help="time of the initial column (s)")
+    ap.add_argument("--repose", type=float, nargs="+", default=[21.0, 23.5])
+    a = ap.parse_args()
+    run = femdem.Run(a.out)
+    h = run.history
+    names, xyz = grain_columns(h)
+    if not names:
+        sys.exit(f"plot_collapse: {a.out}: no bodies in history.csv")
+    t = h["time"]
+    i0 = 0 if a.start is None else int(np.searchsorted(t, a.start))
+    with femdem.open_results(a.out) as res:
+        x0, x1 = res.positions(0), res.positions(-1)
+        node_body = np.asarray(res.node_body)
+    # each grain's radius: its nodes' largest distance from their mean, in the first frame
+    radius = np.zeros(node_body.max() + 1)
+    for b in range(radius.size):
+        p = x0[node_body == b]
+        if len(p):
+            radius[b] = np.linalg.norm(p - p.mean(axis=0), axis=1).max()
+    rg = float(radius[radius > 0].mean())
+    R, H = run_out(xyz, rg)
+    r_i, h_i = R[i0], H[i0]
+    aspect = h_i / r_i
+    # the deposit's profile: the highest node per ring and sector, averaged over the sectors
+    rr = np.hypot(x1[:, 0], x1[:, 1])
+    th = np.arctan2(x1[:, 1], x1[:, 0])
+    ring = rg
+    nb = int(rr.max() / ring) + 1
+    top = np.zeros((SECTORS, nb))
+    s = ((th + math.pi) / (2 * math.pi) * SECTORS).astype(int) % SECTORS
+    k = (rr / ring).astype(int)
+    np.maximum.at(top, (s, k), np.maximum(x1[:, 2], 0.0))
+    profile = top.mean(axis=0)
+    centres_r = (np.arange(nb) + 0.5) * ring
+    r_f, h_f = R[-1], float(x1[:, 2].max())
+    print(f"{len(names)} grains, mean radius {rg * 1e3:.3f} mm; start t = {t[i0]:.4g} s, end "
+          f"t = {t[-1]:.4g} s")
+    print(f"initial column: R_i = {r_i * 1e3:.2f} mm, H_i = {h_i * 1e3:.2f} mm, a = {aspect:.3f}")
+    print(f"deposit: R_f = {r_f * 1e3:.2f} mm (R_f / R_i = {r_f / r_i:.3f}), H_f = "
+          f"{h_f * 1e3:.2f} mm (H_f / R_i = {h_f / r_i:.3f}, H_f / H_i = {h_f / h_i:.3f})")
+    for label, value, _ in laws(aspect, a.repose):
+        print(f"  {label}: R_f / R_i = {value:.3f} (deposit {100 * (r_f / r_i / value - 1):+.1f} %)")
+    if aspect > 0.74:
+        print(f"  saturation H_f = 0.74 R_i: deposit {100 * (h_f / r_i / 0.74 - 1):+.1f} %")
+
+    fig, ax = plt.subplots(1, 3, figsize=(16, 4.8))
+    ax[0].plot(centres_r / r_i, profile / r_i, "k-", label="deposit h(r) (24 sectors)")
+    ax[0].plot([0, 1, 1], [h_i / r_i, h_i / r_i, 0], "b--", label="initial column")
+    for label, value, (lr, lh) in laws(aspect, a.repose):
+        ax[0].plot(lr, lh, ":", label=f"{label}: R_f / R_i = {value:.2f}")
+    ax[0].set_xlabel("r / R_i")
+    ax[0].set_ylabel("h / R_i")
+    ax[0].legend(fontsize=8)
+    ax[1].plot(t, R / r_i, label="R(t) / R_i")
+    ax[1].plot(t, H / r_i, label="H(t) / R_i")
+    ax[1].set_xlabel("t (s)")
+    ax[1].legend()
+    z0 = xyz[i0, :, 2]
+    sc = ax[2].scatter(np.hypot(xyz[-1, :, 0], xyz[-1, :, 1]) / r_i, xyz[-1, :, 2] / r_i, c=z0 / h_i,
+                       s=8, cmap="viridis")
+    fig.colorbar(sc, ax=ax[2], label="initial height / H_i")
+    ax[2].set_xlabel("r / R_i (grain centres at the end)")
+    ax[2].set_ylabel("z / R_i")
+    fig.tight_layout()
+    png = a.output or os.path.join(a.out, "collapse.png")
+    fig.savefig(png, dpi=110)
+    print(f"figure: {png}")
+
+
+if __name__ == "__main__":
+    main()
