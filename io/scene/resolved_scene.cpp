@@ -111,7 +111,7 @@ std::string resolved_scene_text(const toml::table& root) {
       os << "\n";
     }
   for (const char* section : {"simulation", "materials", "bodies", "packings", "walls", "tubes",
-                              "constraints", "contact", "compaction"}) {
+                              "constraints", "contact", "compaction", "output"}) {
     const toml::node* n = root.get(section);
     if (!n) continue;
     if (const toml::table* t = n->as_table()) {

@@ -157,3 +157,21 @@ fix = ["x", "y"]
 }
 
 }  // namespace
+
+// The resolved scene holds the [output] section (run.log shows it, and the digest that ties a
+// checkpoint to its scene sees it: a resume must not change what the frames hold).
+namespace {
+TEST(SceneReader, ResolvedSceneHoldsTheOutputFields) {
+  const std::string base = femdem::test::scene_text(0, "");
+  const femdem::SceneFile plain = load_scene(write_file(tmp_dir() / "output_plain.toml", base));
+  const femdem::SceneFile fields = load_scene(
+      write_file(tmp_dir() / "output_fields.toml", base + "[output]\nfields = [\"log_strain\"]\n"));
+  EXPECT_NE(fields.resolved_toml.find("[output]"), std::string::npos) << fields.resolved_toml;
+  EXPECT_NE(fields.resolved_toml.find("log_strain"), std::string::npos) << fields.resolved_toml;
+  EXPECT_NE(fields.resolved_toml, plain.resolved_toml);
+  // and reads back the same
+  const femdem::SceneFile again =
+      load_scene(write_file(tmp_dir() / "output_again.toml", fields.resolved_toml));
+  EXPECT_EQ(again.resolved_toml, fields.resolved_toml);
+}
+}  // namespace
