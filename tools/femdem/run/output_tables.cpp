@@ -25,7 +25,7 @@ constexpr OutputEntry<Run> kRunColumns[] = {
     {"contact_energy", "J", "penalty energy stored in contacts now (walls and bodies)",
      [](const Run& s) { return s.energies.contact; }},
     {"contact_dissipation", "J",
-     "work of friction, wall dashpots (`damping`) and impact damping so far",
+     "work of friction, wall dashpots (`damping`), impact damping and rolling resistance so far",
      [](const Run& s) { return s.energies.contact_dissipation; }},
     {"viscous_dissipation", "J",
      "work of the artificial bulk viscosity and of `simulation.deformation_damping` so far",
