@@ -19,8 +19,10 @@ double resist_rolling(const Model& m, double mu_r, const std::vector<ContactPatc
     if (!a_free && !b_free) continue;
     if ((a_free && !(s.rigid[p.body_a].mass > 0.0)) || (b_free && !(s.rigid[p.body_b].mass > 0.0)))
       continue;
+    // the relative spin, and the rolling radius: R_a R_b / (R_a + R_b) between two free bodies,
+    // the free one's distance to the contact against a fixed body or a wall
     Vec3 w = Vec3::Zero();
-    double r_a = 0.0, r_b = HUGE_VAL;
+    double r_a = 0.0, r_b = 0.0;
     if (a_free) {
       w += s.rigid[p.body_a].angular_velocity;
       r_a = (x - s.rigid[p.body_a].centre).norm();
@@ -29,12 +31,11 @@ double resist_rolling(const Model& m, double mu_r, const std::vector<ContactPatc
       w -= s.rigid[p.body_b].angular_velocity;
       r_b = (x - s.rigid[p.body_b].centre).norm();
     }
-    if (!a_free) std::swap(r_a, r_b);       // a fixed body or a wall on side a: R is b's
+    const double radius = a_free && b_free ? r_a * r_b / (r_a + r_b) : a_free ? r_a : r_b;
     const Vec3 rolling = w - w.dot(n) * n;  // the spin about the normal is not rolling
     const double omega = rolling.norm();
     if (!(omega > 0.0)) continue;
     const Vec3 e = rolling / omega;
-    const double radius = std::isfinite(r_b) ? r_a * r_b / (r_a + r_b) : r_a;
     double inverse_inertia = 0.0;  // about e, of the two bodies together
     if (a_free) inverse_inertia += e.dot(s.rigid[p.body_a].inertia_inverse * e);
     if (b_free) inverse_inertia += e.dot(s.rigid[p.body_b].inertia_inverse * e);
