@@ -5,7 +5,13 @@ laws of Lajeunesse et al. (2004).
 
 usage: tools/plot_collapse.py OUT [-o PNG] [--start T] [--repose DEG [DEG ...]]
 
-Reads OUT/history.csv (every grain's centre of mass in time) and OUT/results.h5 (the grains'
+A run of one body (the continuum counterpart, scenes/column_collapse_continuum.toml) is read
+from its frames alone: R is the mean over 24 sectors of the outermost node in each, H the
+highest node, and the figure's third panel shows the nodes at the end coloured by their initial
+height. Its `top undisturbed` line gives the height of the column's centre (the nodes within
+R_i / 4 of the axis), which for a < 0.74 must stay at H_i.
+
+A run of many grains reads OUT/history.csv (every grain's centre of mass in time) and OUT/results.h5 (the grains'
 nodes, first and last frame), and prints and draws:
 - the column at the start (`--start`, default the first history row: the time the tube starts
   to rise is a better start when the grains settle first): R_i, the radius of the outermost
@@ -81,6 +87,8 @@ def main():
     names, xyz = grain_columns(h)
     if not names:
         sys.exit(f"plot_collapse: {a.out}: no bodies in history.csv")
+    if len(names) == 1:
+        return continuum(a)
     t = h["time"]
     i0 = 0 if a.start is None else int(np.searchsorted(t, a.start))
     with femdem.open_results(a.out) as res:
@@ -97,16 +105,7 @@ def main():
     r_i, h_i = R[i0], H[i0]
     aspect = h_i / r_i
     # the deposit's profile: the highest node per ring and sector, averaged over the sectors
-    rr = np.hypot(x1[:, 0], x1[:, 1])
-    th = np.arctan2(x1[:, 1], x1[:, 0])
-    ring = rg
-    nb = int(rr.max() / ring) + 1
-    top = np.zeros((SECTORS, nb))
-    s = ((th + math.pi) / (2 * math.pi) * SECTORS).astype(int) % SECTORS
-    k = (rr / ring).astype(int)
-    np.maximum.at(top, (s, k), np.maximum(x1[:, 2], 0.0))
-    profile = top.mean(axis=0)
-    centres_r = (np.arange(nb) + 0.5) * ring
+    centres_r, deposit = profile(x1, rg)
     r_f, h_f = R[-1], float(x1[:, 2].max())
     print(f"{len(names)} grains, mean radius {rg * 1e3:.3f} mm; start t = {t[i0]:.4g} s, end "
           f"t = {t[-1]:.4g} s")
@@ -119,7 +118,7 @@ def main():
         print(f"  saturation H_f = 0.74 R_i: deposit {100 * (h_f / r_i / 0.74 - 1):+.1f} %")
 
     fig, ax = plt.subplots(1, 3, figsize=(16, 4.8))
-    ax[0].plot(centres_r / r_i, profile / r_i, "k-", label="deposit h(r) (24 sectors)")
+    ax[0].plot(centres_r / r_i, deposit / r_i, "k-", label="deposit h(r) (24 sectors)")
     ax[0].plot([0, 1, 1], [h_i / r_i, h_i / r_i, 0], "b--", label="initial column")
     for label, value, (lr, lh) in laws(aspect, a.repose):
         ax[0].plot(lr, lh, ":", label=f"{label}: R_f / R_i = {value:.2f}")
@@ -135,6 +134,89 @@ def main():
                        s=8, cmap="viridis")
     fig.colorbar(sc, ax=ax[2], label="initial height / H_i")
     ax[2].set_xlabel("r / R_i (grain centres at the end)")
+    ax[2].set_ylabel("z / R_i")
+    fig.tight_layout()
+    png = a.output or os.path.join(a.out, "collapse.png")
+    fig.savefig(png, dpi=110)
+    print(f"figure: {png}")
+
+
+def sector_front(x):
+    """The mean over SECTORS of the outermost node's radius in each sector."""
+    rr = np.hypot(x[:, 0], x[:, 1])
+    s = ((np.arctan2(x[:, 1], x[:, 0]) + math.pi) / (2 * math.pi) * SECTORS).astype(int) % SECTORS
+    front = np.zeros(SECTORS)
+    np.maximum.at(front, s, rr)
+    return float(front.mean())
+
+
+def profile(x, ring, empty_is_zero=True):
+    """(ring centres, the mean over SECTORS of the highest node in each ring and sector).
+
+    Among grains a sector with no node has no grain there (height 0); a continuum covers every
+    sector it reaches, and a cell with no node is one the mesh's nodes happen to miss (near the
+    axis, where the cells are small), so with empty_is_zero=False the mean is over the cells
+    that hold nodes."""
+    rr = np.hypot(x[:, 0], x[:, 1])
+    nb = int(rr.max() / ring) + 1
+    top = np.zeros((SECTORS, nb))
+    hit = np.zeros((SECTORS, nb))
+    s = ((np.arctan2(x[:, 1], x[:, 0]) + math.pi) / (2 * math.pi) * SECTORS).astype(int) % SECTORS
+    k = (rr / ring).astype(int)
+    np.maximum.at(top, (s, k), np.maximum(x[:, 2], 0.0))
+    np.add.at(hit, (s, k), 1.0)
+    if empty_is_zero:
+        return (np.arange(nb) + 0.5) * ring, top.mean(axis=0)
+    return (np.arange(nb) + 0.5) * ring, top.sum(axis=0) / np.maximum((hit > 0).sum(axis=0), 1)
+
+
+def centre_height(x, radius):
+    """The highest node within `radius` of the axis."""
+    return float(x[np.hypot(x[:, 0], x[:, 1]) < radius, 2].max())
+
+
+def continuum(a):
+    """One deforming body: every measure from its nodes, frame by frame."""
+    with femdem.open_results(a.out) as res:
+        t = np.asarray(res.times)
+        frames = [res.positions(i) for i in range(len(t))]
+    i0 = 0 if a.start is None else min(int(np.searchsorted(t, a.start)), len(t) - 1)
+    R = np.array([sector_front(x) for x in frames])
+    H = np.array([float(x[:, 2].max()) for x in frames])
+    r_i, h_i = R[i0], H[i0]
+    aspect = h_i / r_i
+    x0, x1 = frames[i0], frames[-1]
+    r_f, h_f = R[-1], H[-1]
+    c0, c1 = centre_height(x0, r_i / 4), centre_height(x1, r_i / 4)
+    print(f"one body, {x1.shape[0]} nodes; start t = {t[i0]:.4g} s, end t = {t[-1]:.4g} s")
+    print(f"initial column: R_i = {r_i * 1e3:.2f} mm, H_i = {h_i * 1e3:.2f} mm, a = {aspect:.3f}")
+    print(f"deposit: R_f = {r_f * 1e3:.2f} mm (R_f / R_i = {r_f / r_i:.3f}), H_f = "
+          f"{h_f * 1e3:.2f} mm (H_f / R_i = {h_f / r_i:.3f}, H_f / H_i = {h_f / h_i:.3f})")
+    print(f"top undisturbed: the centre's height {c0 * 1e3:.3f} -> {c1 * 1e3:.3f} mm "
+          f"({100 * (c1 / c0 - 1):+.2f} %)")
+    for label, value, _ in laws(aspect, a.repose):
+        print(f"  {label}: R_f / R_i = {value:.3f} (deposit {100 * (r_f / r_i / value - 1):+.1f} %)")
+    if aspect > 0.74:
+        print(f"  saturation H_f = 0.74 R_i: deposit {100 * (h_f / r_i / 0.74 - 1):+.1f} %")
+
+    ring = r_i / 12  # about the mesh's node spacing at the top
+    fig, ax = plt.subplots(1, 3, figsize=(16, 4.8))
+    pr, ph = profile(x1, ring, empty_is_zero=False)
+    ax[0].plot(pr / r_i, ph / r_i, "k-", label="deposit h(r) (24 sectors)")
+    ax[0].plot([0, 1, 1], [h_i / r_i, h_i / r_i, 0], "b--", label="initial column")
+    for label, value, (lr, lh) in laws(aspect, a.repose):
+        ax[0].plot(lr, lh, ":", label=f"{label}: R_f / R_i = {value:.2f}")
+    ax[0].set_xlabel("r / R_i")
+    ax[0].set_ylabel("h / R_i")
+    ax[0].legend(fontsize=8)
+    ax[1].plot(t, R / r_i, label="R(t) / R_i")
+    ax[1].plot(t, H / r_i, label="H(t) / R_i")
+    ax[1].set_xlabel("t (s)")
+    ax[1].legend()
+    sc = ax[2].scatter(np.hypot(x1[:, 0], x1[:, 1]) / r_i, x1[:, 2] / r_i, c=x0[:, 2] / h_i, s=2,
+                       cmap="viridis")
+    fig.colorbar(sc, ax=ax[2], label="initial height / H_i")
+    ax[2].set_xlabel("r / R_i (nodes at the end)")
     ax[2].set_ylabel("z / R_i")
     fig.tight_layout()
     png = a.output or os.path.join(a.out, "collapse.png")
