@@ -22,6 +22,7 @@
 #include "io/scene/scene_reader.hpp"
 #include "support/history_csv.hpp"
 #include "support/run_command.hpp"
+#include "support/scene_run.hpp"
 
 namespace fs = std::filesystem;
 
@@ -112,20 +113,10 @@ struct RunResult {
 };
 
 RunResult run_scene(const std::string& name, const Options& o) {
-  const fs::path dir = fs::path(FEMDEM_TEST_TMP) / "compaction" / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  std::ofstream(dir / "scene.toml") << scene_text(o);
-  const auto r = femdem::test::run_command(std::string("'") + FEMDEM_EXE + "' run '" +
-                                           (dir / "scene.toml").string() +
-                                           "' --quiet --no-plot --out '" + (dir / "out").string() +
-                                           "' --threads " + std::to_string(o.threads));
-  EXPECT_EQ(r.code, 0) << r.output;
-  RunResult run;
-  run.h = femdem::test::read_history(dir / "out" / "history.csv");
-  std::ifstream in(dir / "out" / "summary.json");
-  run.summary = nlohmann::json::parse(in);
-  return run;
+  auto r = femdem::test::run_scene_text("compaction/" + name, scene_text(o),
+                                        "--threads " + std::to_string(o.threads));
+  EXPECT_EQ(r.command.code, 0) << r.command.output;
+  return {std::move(r.history), std::move(r.summary)};
 }
 
 double last(const std::vector<double>& v) {
