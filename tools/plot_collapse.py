@@ -102,23 +102,32 @@ def main():
             radius[b] = np.linalg.norm(p - p.mean(axis=0), axis=1).max()
     rg = float(radius[radius > 0].mean())
     R, H = run_out(xyz, rg)
-    r_i, h_i = R[i0], H[i0]
-    aspect = h_i / r_i
     # the deposit's profile: the highest node per ring and sector, averaged over the sectors
     centres_r, deposit = profile(x1, rg)
-    r_f, h_f = R[-1], float(x1[:, 2].max())
+    h_f = float(x1[:, 2].max())
     print(f"{len(names)} grains, mean radius {rg * 1e3:.3f} mm; start t = {t[i0]:.4g} s, end "
           f"t = {t[-1]:.4g} s")
+    cloud = (np.hypot(xyz[-1, :, 0], xyz[-1, :, 1]), xyz[-1, :, 2], xyz[i0, :, 2])
+    report(a, t, R, H, i0, h_f, (centres_r, deposit), cloud, "grain centres", 8)
+
+
+def report(a, t, R, H, i0, h_f, deposit, cloud, cloud_label, point_size, note=None):
+    """Print the column, the deposit and the laws; draw the profile against the laws, R and H in
+    time, and the cloud (r, z, initial z) at the end coloured by the initial height."""
+    r_i, h_i, r_f = R[i0], H[i0], R[-1]
+    aspect = h_i / r_i
     print(f"initial column: R_i = {r_i * 1e3:.2f} mm, H_i = {h_i * 1e3:.2f} mm, a = {aspect:.3f}")
     print(f"deposit: R_f = {r_f * 1e3:.2f} mm (R_f / R_i = {r_f / r_i:.3f}), H_f = "
           f"{h_f * 1e3:.2f} mm (H_f / R_i = {h_f / r_i:.3f}, H_f / H_i = {h_f / h_i:.3f})")
+    if note:
+        print(note)
     for label, value, _ in laws(aspect, a.repose):
         print(f"  {label}: R_f / R_i = {value:.3f} (deposit {100 * (r_f / r_i / value - 1):+.1f} %)")
     if aspect > 0.74:
         print(f"  saturation H_f = 0.74 R_i: deposit {100 * (h_f / r_i / 0.74 - 1):+.1f} %")
 
     fig, ax = plt.subplots(1, 3, figsize=(16, 4.8))
-    ax[0].plot(centres_r / r_i, deposit / r_i, "k-", label="deposit h(r) (24 sectors)")
+    ax[0].plot(deposit[0] / r_i, deposit[1] / r_i, "k-", label="deposit h(r) (24 sectors)")
     ax[0].plot([0, 1, 1], [h_i / r_i, h_i / r_i, 0], "b--", label="initial column")
     for label, value, (lr, lh) in laws(aspect, a.repose):
         ax[0].plot(lr, lh, ":", label=f"{label}: R_f / R_i = {value:.2f}")
@@ -129,11 +138,10 @@ def main():
     ax[1].plot(t, H / r_i, label="H(t) / R_i")
     ax[1].set_xlabel("t (s)")
     ax[1].legend()
-    z0 = xyz[i0, :, 2]
-    sc = ax[2].scatter(np.hypot(xyz[-1, :, 0], xyz[-1, :, 1]) / r_i, xyz[-1, :, 2] / r_i, c=z0 / h_i,
-                       s=8, cmap="viridis")
+    r, z, z0 = cloud
+    sc = ax[2].scatter(r / r_i, z / r_i, c=z0 / h_i, s=point_size, cmap="viridis")
     fig.colorbar(sc, ax=ax[2], label="initial height / H_i")
-    ax[2].set_xlabel("r / R_i (grain centres at the end)")
+    ax[2].set_xlabel(f"r / R_i ({cloud_label} at the end)")
     ax[2].set_ylabel("z / R_i")
     fig.tight_layout()
     png = a.output or os.path.join(a.out, "collapse.png")
@@ -183,45 +191,15 @@ def continuum(a):
     i0 = 0 if a.start is None else min(int(np.searchsorted(t, a.start)), len(t) - 1)
     R = np.array([sector_front(x) for x in frames])
     H = np.array([float(x[:, 2].max()) for x in frames])
-    r_i, h_i = R[i0], H[i0]
-    aspect = h_i / r_i
+    r_i, h_f = R[i0], H[-1]
     x0, x1 = frames[i0], frames[-1]
-    r_f, h_f = R[-1], H[-1]
     c0, c1 = centre_height(x0, r_i / 4), centre_height(x1, r_i / 4)
     print(f"one body, {x1.shape[0]} nodes; start t = {t[i0]:.4g} s, end t = {t[-1]:.4g} s")
-    print(f"initial column: R_i = {r_i * 1e3:.2f} mm, H_i = {h_i * 1e3:.2f} mm, a = {aspect:.3f}")
-    print(f"deposit: R_f = {r_f * 1e3:.2f} mm (R_f / R_i = {r_f / r_i:.3f}), H_f = "
-          f"{h_f * 1e3:.2f} mm (H_f / R_i = {h_f / r_i:.3f}, H_f / H_i = {h_f / h_i:.3f})")
-    print(f"top undisturbed: the centre's height {c0 * 1e3:.3f} -> {c1 * 1e3:.3f} mm "
-          f"({100 * (c1 / c0 - 1):+.2f} %)")
-    for label, value, _ in laws(aspect, a.repose):
-        print(f"  {label}: R_f / R_i = {value:.3f} (deposit {100 * (r_f / r_i / value - 1):+.1f} %)")
-    if aspect > 0.74:
-        print(f"  saturation H_f = 0.74 R_i: deposit {100 * (h_f / r_i / 0.74 - 1):+.1f} %")
-
     ring = r_i / 12  # about the mesh's node spacing at the top
-    fig, ax = plt.subplots(1, 3, figsize=(16, 4.8))
-    pr, ph = profile(x1, ring, empty_is_zero=False)
-    ax[0].plot(pr / r_i, ph / r_i, "k-", label="deposit h(r) (24 sectors)")
-    ax[0].plot([0, 1, 1], [h_i / r_i, h_i / r_i, 0], "b--", label="initial column")
-    for label, value, (lr, lh) in laws(aspect, a.repose):
-        ax[0].plot(lr, lh, ":", label=f"{label}: R_f / R_i = {value:.2f}")
-    ax[0].set_xlabel("r / R_i")
-    ax[0].set_ylabel("h / R_i")
-    ax[0].legend(fontsize=8)
-    ax[1].plot(t, R / r_i, label="R(t) / R_i")
-    ax[1].plot(t, H / r_i, label="H(t) / R_i")
-    ax[1].set_xlabel("t (s)")
-    ax[1].legend()
-    sc = ax[2].scatter(np.hypot(x1[:, 0], x1[:, 1]) / r_i, x1[:, 2] / r_i, c=x0[:, 2] / h_i, s=2,
-                       cmap="viridis")
-    fig.colorbar(sc, ax=ax[2], label="initial height / H_i")
-    ax[2].set_xlabel("r / R_i (nodes at the end)")
-    ax[2].set_ylabel("z / R_i")
-    fig.tight_layout()
-    png = a.output or os.path.join(a.out, "collapse.png")
-    fig.savefig(png, dpi=110)
-    print(f"figure: {png}")
+    cloud = (np.hypot(x1[:, 0], x1[:, 1]), x1[:, 2], x0[:, 2])
+    report(a, t, R, H, i0, h_f, profile(x1, ring, empty_is_zero=False), cloud, "nodes", 2,
+           f"top undisturbed: the centre's height {c0 * 1e3:.3f} -> {c1 * 1e3:.3f} mm "
+           f"({100 * (c1 / c0 - 1):+.2f} %)")
 
 
 if __name__ == "__main__":
