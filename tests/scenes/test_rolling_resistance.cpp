@@ -30,7 +30,7 @@ struct Spin {
 // floor: a wall, or (fixed_body) a fixed meshed slab listed before the ball, so that the slab is
 // side a of their contact patch
 Spin spin(const std::string& name, double mu_r, bool fixed_body = false) {
-  const std::string text = R"(title = "spinning ball"
+  const std::string head = R"(title = "spinning ball"
 [simulation]
 end_time = 0.04
 output_interval = 0.04
@@ -42,24 +42,24 @@ model = "elastic"
 density = 1000
 youngs_modulus = 1e7
 poisson_ratio = 0.3
-[[bodies]]
+)";
+  const std::string slab = R"([[bodies]]
+name = "floor"
+material = "m"
+fixed = true
+mesh = { generator = "box", size = [0.04, 0.04, 0.01], element_size = 0.01 }
+position = [-0.02, -0.02, -0.01]
+)";
+  const std::string ball = R"([[bodies]]
 name = "ball"
 material = "m"
 mesh = { generator = "sphere", radius = 0.01, element_size = 0.005 }
 position = [0, 0, 0.01]
 angular_velocity = [0, 100, 0]
-%FLOOR%
-[contact]
-rolling_resistance = )" + std::to_string(mu_r) +
-                           "\n";
-  const std::string wall = "[[walls]]\nname = \"floor\"";
-  const std::string slab =
-      "[[bodies]]\nname = \"floor\"\nmaterial = \"m\"\nfixed = true\n"
-      "mesh = { generator = \"box\", size = [0.04, 0.04, 0.01], element_size = 0.01 }\n"
-      "position = [-0.02, -0.02, -0.01]";
-  std::string scene = text;
-  scene.replace(scene.find("%FLOOR%"), 7, fixed_body ? "" : wall);
-  if (fixed_body) scene.insert(scene.find("[[bodies]]"), slab + "\n");
+)";
+  const std::string wall = "[[walls]]\nname = \"floor\"\n";
+  const std::string scene = head + (fixed_body ? slab + ball : ball + wall) +
+                            "[contact]\nrolling_resistance = " + std::to_string(mu_r) + "\n";
   const auto run = femdem::test::run_scene_text("rolling_resistance/" + name, scene);
   EXPECT_EQ(run.command.code, 0) << run.command.output;
   return {run.history, run.summary};

@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Runs shortened shipped scenes with two femdem binaries and says whether their outputs are the
 same bits: history.csv (byte for byte), results.h5 (h5diff, exact), summary.json (equal but for
-its timings and the checkpoint's paths) and the resolved scene in run.log. For refactorings that must not change a result.
+its timings and the checkpoint's paths) and the resolved scene in run.log. For refactorings that
+must not change a result.
 
     tools/bench/compare_runs.py OLD_FEMDEM NEW_FEMDEM [--out DIR]
 
