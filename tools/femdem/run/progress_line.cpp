@@ -11,14 +11,16 @@
 
 namespace femdem {
 
-ProgressLine::ProgressLine(bool quiet, double end_time)
-    : quiet_(quiet), tty_(!quiet && isatty(STDOUT_FILENO)), end_(end_time) {
-  restart_clock();
-}
-
-void ProgressLine::restart_clock() {
-  start_ = last_ = std::chrono::steady_clock::now();
-}
+ProgressLine::ProgressLine(bool quiet, double end_time, const Simulation& sim)
+    : quiet_(quiet),
+      tty_(!quiet && isatty(STDOUT_FILENO)),
+      end_(end_time),
+      time_at_start_(sim.time()),
+      start_(std::chrono::steady_clock::now()),
+      last_(start_),
+      steps_at_last_(sim.steps()),
+      tenths_printed_(
+          end_time > 0.0 ? static_cast<int>(std::min(10.0, 10.0 * sim.time() / end_time)) : 0) {}
 
 void ProgressLine::update(const Simulation& sim) {
   if ((sim.steps() & 15) != 0 || quiet_) return;
@@ -29,7 +31,7 @@ void ProgressLine::update(const Simulation& sim) {
   tenths_printed_ = std::max(tenths_printed_, tenths);
   const double elapsed = std::chrono::duration<double>(now - start_).count();
   const double rate = (sim.steps() - steps_at_last_) / since;
-  const double eta = elapsed * (end_ - sim.time()) / std::max(sim.time(), 1e-300);
+  const double eta = elapsed * (end_ - sim.time()) / std::max(sim.time() - time_at_start_, 1e-300);
   char buf[200];
   std::snprintf(buf, sizeof buf, "t = %.4g / %.4g s (%3.0f%%)  %lld steps  %.0f steps/s  ETA %s",
                 sim.time(), end_, 100.0 * sim.time() / end_, static_cast<long long>(sim.steps()),

@@ -3,6 +3,8 @@
 // The progress line of a run on standard output: rewritten in place on a terminal (every 0.5 s);
 // when the output goes to a file or pipe, a new line each time the run passes another tenth of
 // its end time or a minute after the last line, whichever comes first; nothing with --quiet.
+// The rate and the estimate count from where this run started (a resumed run starts at its
+// checkpoint's time and step, not at zero).
 #include <chrono>
 #include <cstdint>
 
@@ -12,8 +14,8 @@ class Simulation;
 
 class ProgressLine {
  public:
-  ProgressLine(bool quiet, double end_time);
-  void restart_clock();  // the loop starts now
+  // The loop starts now, from `sim`'s time and step.
+  ProgressLine(bool quiet, double end_time, const Simulation& sim);
   // Cheap to call every step: looks at the clock every 16 steps.
   void update(const Simulation& sim);
   void clear();       // the end of a run: wipe the line on a terminal
@@ -22,8 +24,9 @@ class ProgressLine {
  private:
   bool quiet_, tty_;
   double end_;
+  double time_at_start_;
   std::chrono::steady_clock::time_point start_, last_;
-  std::int64_t steps_at_last_ = 0;
+  std::int64_t steps_at_last_;
   int tenths_printed_ = 0;  // piped: the tenths of the end time passed at the last line
 };
 

@@ -454,7 +454,7 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
   };
 
   const StopSignals signals;
-  ProgressLine progress(options.quiet, set.end_time);
+  ProgressLine progress(options.quiet, set.end_time, sim);
   loop_start = Clock::now();
   bool before_last_steps = false;
   try {
