@@ -10,6 +10,7 @@
 #include "elements/tet10_shape.hpp"
 #include "elements/tet10_surface.hpp"
 #include "engine/errors.hpp"
+#include "engine/gather_map.hpp"
 #include "engine/simulation.hpp"
 
 namespace femdem {
@@ -347,7 +348,8 @@ Wall make_wall(const WallSpec& ws, const ContactSettings& contact) {
   return w;
 }
 
-// node -> element slots, in element order (the fixed order of the deterministic gather)
+}  // namespace
+
 void build_gather_map(Model& m) {
   const std::int32_t nn = m.node_count, ne = m.element_count;
   m.node_elem_offset.assign(nn + 1, 0);
@@ -359,8 +361,6 @@ void build_gather_map(Model& m) {
   for (std::int32_t e = 0; e < ne; ++e)
     for (int a = 0; a < 10; ++a) m.node_elem_slot[fill[m.conn[e][a]]++] = e * 10 + a;
 }
-
-}  // namespace
 
 Model build_model(const ModelSpec& spec) {
   Model m;
