@@ -4,12 +4,13 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <sstream>
 
 #include "engine/element_gather.hpp"
 #include "engine/element_kernel.hpp"
 #include "engine/errors.hpp"
-#include "engine/ordered_sum.hpp"
+#include "engine/exact_sum.hpp"
 #include "engine/parallel_threshold.hpp"
 #include "engine/rolling_resistance.hpp"
 #include "materials/symmetric_eigen3.hpp"
@@ -25,14 +26,16 @@ std::vector<MaterialKernel> compile_kernels(const std::vector<MaterialParams>& m
 
 }  // namespace
 
-Simulation::Simulation(Model model)
+Simulation::Simulation(Model model, std::optional<Distribution> distribution)
     : model_(std::move(model)),
+      dist_(std::move(distribution)),
       kernels_(compile_kernels(model_.materials)),
       element_pass_(model_, kernels_),
       wall_contact_(model_, model_.contact.patch_loads()),
       body_contact_(model_) {
   const auto nn = static_cast<std::size_t>(model_.node_count);
   const auto ne = static_cast<std::size_t>(model_.element_count);
+  check_distributable();
   accel_.assign(3 * nn, 0.0);
   reaction_.assign(3 * nn, 0.0);
   elem_force_.assign(30 * ne, 0.0);
@@ -71,7 +74,8 @@ Simulation::Simulation(Model model)
       for (int k = 0; k < 3; ++k) model_.dof_mode[3 * n + k] = 1, model_.v[3 * n + k] = 0.0;
   // the few driven dofs, so the work of the supports does not scan every node each step
   for (std::size_t i = 0; i < 3 * nn; ++i)
-    if (model_.dof_mode[i] == 2) driven_dofs_.push_back(i);
+    if (model_.dof_mode[i] == 2 && owns_node(static_cast<std::int64_t>(i / 3)))
+      driven_dofs_.push_back(i);
   body_added_mass_.assign(model_.bodies.size(), 0.0);
   body_added_at_start_.assign(model_.bodies.size(), 0.0);
   if (model_.settings.stable_step == SimulationSettings::StableStep::assembled) {
@@ -80,12 +84,14 @@ Simulation::Simulation(Model model)
   if (model_.settings.mass_scaling_time_step > 0.0) elem_mass_scale_.assign(ne, 1.0);
   // the energy a uniform strain of 1.4e-3 stores in the whole model (rho c^2 eps^2 / 2 per
   // volume): the scale below which an energy error does not stop a run
-  for (std::int32_t e = 0; e < model_.element_count; ++e) {
+  ExactSum floor[1] = {exact_sum_of(model_.element_count, [&](std::int64_t e) {
+    if (!owns_element(e)) return 0.0;
     const CompiledMaterial& cm = compiled_[model_.element_material[e]];
-    const double* w = model_.gauss_weight.data() + 4 * static_cast<std::size_t>(e);
-    energy_floor_ +=
-        1e-6 * cm.density * cm.wave_speed * cm.wave_speed * (w[0] + w[1] + w[2] + w[3]);
-  }
+    const double* w = model_.gauss_weight.data() + 4 * e;
+    return 1e-6 * cm.density * cm.wave_speed * cm.wave_speed * (w[0] + w[1] + w[2] + w[3]);
+  })};
+  reduce(floor);
+  energy_floor_ = floor[0].value();
   elem_scratch_.assign(ne, 0.0);
   if (model_.contact.patch_loads()) {
     patch_loads_.resize(model_.bodies.size());
@@ -188,23 +194,34 @@ void Simulation::compute_forces(double step_dt) {
   // 2. gather per node in the fixed CSR order: same bits for any thread count
   gather_element_forces(m, elem_force_.data(), m.f_int.data());
 
-  if (first_bad < ne) {
-    const Body& b = m.bodies[m.element_body[first_bad]];
+  // (in a distributed run, the lowest global element over the ranks: every rank stops alike)
+  std::int64_t bad = first_bad < ne ? first_bad : INT64_MAX;
+  if (dist_) {
+    if (bad != INT64_MAX) bad = dist_->part.elements[first_bad];
+    bad = dist_->comm->min(bad);
+  }
+  if (bad != INT64_MAX) {
+    const std::vector<std::int32_t>* first = dist_ ? &dist_->part.body_first_element : nullptr;
+    const auto body = first
+                          ? std::upper_bound(first->begin(), first->end(), bad) - first->begin() - 1
+                          : m.element_body[bad];
+    const Body& b = m.bodies[body];
     std::ostringstream msg;
-    msg << "element " << (first_bad - b.first_element) << " of body '" << b.name
-        << "' inverted (det F <= 0) at t = " << time_ << " s, step " << steps_ << ". " << advice();
+    msg << "element " << (bad - (first ? (*first)[body] : b.first_element)) << " of body '"
+        << b.name << "' inverted (det F <= 0) at t = " << time_ << " s, step " << steps_ << ". "
+        << advice();
     throw InstabilityError(msg.str());
   }
-  // sums in fixed chunks (engine/ordered_sum.hpp): in parallel, the same bits with any threads
-  internal_energy_ = ordered_sum(
-      ne, [&](std::int64_t e) { return elem_energy_[e]; }, sum_scratch_);
-  plastic_dissipation_ += ordered_sum(
-      ne, [&](std::int64_t e) { return elem_dissipation_[e]; }, sum_scratch_);
-  if (bulk_viscosity)
-    viscous_dissipation_ +=
-        ordered_sum(
-            ne, [&](std::int64_t e) { return elem_viscous_power_[e]; }, sum_scratch_) *
-        step_dt;
+  // exact sums (engine/exact_sum.hpp): in parallel, the same bits with any threads and ranks
+  auto owned_sum = [&](const std::vector<double>& per_element) {
+    return exact_sum_of(ne, [&](std::int64_t e) { return owns_element(e) ? per_element[e] : 0.0; });
+  };
+  ExactSum element_sums[3] = {owned_sum(elem_energy_), owned_sum(elem_dissipation_),
+                              bulk_viscosity ? owned_sum(elem_viscous_power_) : ExactSum{}};
+  reduce(element_sums);
+  internal_energy_ = element_sums[0].value();
+  plastic_dissipation_ += element_sums[1].value();
+  if (bulk_viscosity) viscous_dissipation_ += element_sums[2].value() * step_dt;
 
   // 3. contact, in a fixed order: bodies on walls (engine/wall_contact.cpp), then bodies on
   // each other (engine/body_contact.cpp), each adding to f_contact and to the step's sums
@@ -285,6 +302,27 @@ double Simulation::damp_deformation(double alpha) {
   double power = 0.0;
   for (const double p : body_power_) power += p;
   return power;
+}
+
+void Simulation::check_distributable() const {
+  if (!dist_) return;
+  const Model& m = model_;
+  const SimulationSettings& s = m.settings;
+  std::string missing;
+  if (!m.walls.empty())
+    missing = "walls";
+  else if (m.bodies.size() > 1)
+    missing = "more than one body";
+  else if (s.stable_step == SimulationSettings::StableStep::assembled)
+    missing = "simulation.stable_step = \"assembled\" (use \"element\")";
+  else if (s.mass_scaling_time_step > 0.0)
+    missing = "simulation.mass_scaling_time_step";
+  else if (s.deformation_damping > 0.0)
+    missing = "simulation.deformation_damping";
+  if (!missing.empty())
+    throw InputError("distributed runs cannot yet do this scene: " + missing +
+                     " (issue 23, docs/ARCHITECTURE.md \"Distributed runs\"); run it as one "
+                     "process");
 }
 
 std::string Simulation::advice() const {
@@ -374,7 +412,7 @@ double Simulation::element_and_contact_bound() {
     for (std::int64_t e = 0; e < ne; ++e)
       dt_el = std::min(dt_el, elem_dt_[e] * std::sqrt(elem_mass_scale_[e]));
   }
-  double dt = dt_el;
+  double dt = dt_el = reduce_min(dt_el);
   for (ContactModel* c : std::initializer_list<ContactModel*>{&wall_contact_, &body_contact_})
     if (c->active()) dt = c->stable_step(m, dt_el, dt);
   return dt;
@@ -436,8 +474,10 @@ void Simulation::step(double dt_limit) {
 
   // work of supports and walls over the step, trapezoidal in their forces
   auto boundary_power = [&]() {
-    double p = 0.0;
-    for (const std::size_t i : driven_dofs_) p += reaction_[i] * m.dof_velocity[i];
+    ExactSum supports[1];
+    for (const std::size_t i : driven_dofs_) supports[0].add(reaction_[i] * m.dof_velocity[i]);
+    reduce(supports);
+    double p = supports[0].value();
     for (const auto& w : m.walls) p -= w.force.dot(w.velocity);
     return p;
   };
@@ -456,15 +496,21 @@ void Simulation::step(double dt_limit) {
       m.x[i] += dt * m.v[i];
     }
   }
+  // a distributed run: the ghosts' positions and half-step velocities from their owners, so
+  // that everything the step reads from here on is what one process has
+  if (dist_) {
+    dist_->comm->exchange(dist_->part, m.x.data(), 3);
+    dist_->comm->exchange(dist_->part, m.v.data(), 3);
+  }
   if (g.squaredNorm() > 0.0) {
-    gravity_work = ordered_sum(
-        nn,
-        [&](std::int64_t n) {
-          double w = 0.0;
-          for (int k = 0; k < 3; ++k) w += m.mass[n] * g[k] * dt * m.v[3 * n + k];
-          return w;
-        },
-        sum_scratch_);
+    ExactSum work[1] = {exact_sum_of(nn, [&](std::int64_t n) {
+      if (!owns_node(n)) return 0.0;
+      double w = 0.0;
+      for (int k = 0; k < 3; ++k) w += m.mass[n] * g[k] * dt * m.v[3 * n + k];
+      return w;
+    })};
+    reduce(work);
+    gravity_work = work[0].value();
   }
   for (auto& w : m.walls) {
     if (w.force_driven()) {
@@ -498,6 +544,7 @@ void Simulation::step(double dt_limit) {
       if (m.dof_mode[i] == 0) m.v[i] += 0.5 * dt * accel_[i];
       finite = finite && std::isfinite(m.v[i]) && std::isfinite(m.x[i]);
     }
+  if (dist_) finite = dist_->comm->all(finite);
   if (!finite) {
     std::ostringstream msg;
     msg << "non-finite velocity or position at t = " << time_ << " s, step " << steps_

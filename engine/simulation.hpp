@@ -11,6 +11,7 @@
 
 #include "engine/body_contact.hpp"
 #include "engine/contact_patch.hpp"
+#include "engine/distributed/distribution.hpp"
 #include "engine/element_pass.hpp"
 #include "engine/impact_damping.hpp"
 #include "engine/model.hpp"
@@ -57,7 +58,11 @@ Model build_model(const ModelSpec& spec);
 
 class Simulation {
  public:
-  explicit Simulation(Model model);
+  // With a distribution: `model` is this rank's part (local_model), and the steps give its
+  // owned nodes the same bits as one process would (docs/ARCHITECTURE.md, "Distributed runs");
+  // energies() and the stable step are then the whole model's, and every rank must call
+  // step() and energies() alike. Throws InputError for what distributed runs cannot do yet.
+  explicit Simulation(Model model, std::optional<Distribution> distribution = std::nullopt);
 
   // One step. Throws InstabilityError (with body, element, time and advice) on det F <= 0 or
   // non-finite values.
@@ -126,6 +131,15 @@ class Simulation {
   // mass.
   bool scale_masses(double element_dt_needed);
   std::string advice() const;  // what to change when the run diverges
+  // distributed runs: what this rank sums (its owned nodes and elements), and the sums and
+  // minima over all ranks (no-ops in one process)
+  bool owns_node(std::int64_t n) const { return !dist_ || dist_->part.node_owned[n]; }
+  bool owns_element(std::int64_t e) const { return !dist_ || dist_->part.element_owned[e]; }
+  void reduce(std::span<ExactSum> sums) const {
+    if (dist_) dist_->comm->sum(sums);
+  }
+  double reduce_min(double x) const { return dist_ ? dist_->comm->min(x) : x; }
+  void check_distributable() const;
   // Throws InstabilityError once the balance's change exceeds settings.energy_balance_limit
   // times the largest energy seen (at least energy_floor_).
   void check_energy_balance(const Energies& en) const;
@@ -143,6 +157,7 @@ class Simulation {
   };
 
   Model model_;
+  std::optional<Distribution> dist_;
   std::vector<CompiledMaterial> compiled_;
   std::vector<MaterialKernel> kernels_;  // compiled_[i].kernel, as the element pass takes them
   ElementPass element_pass_;
@@ -163,7 +178,6 @@ class Simulation {
   PatchLoads patch_loads_;
   std::vector<double> elem_viscous_power_;    // per element, this step
   mutable std::vector<double> elem_scratch_;  // per element, for bodies_volume
-  mutable std::vector<double> sum_scratch_;   // chunk sums of ordered_sum
   // nodal F-bar (FbarMode::Nodal) work arrays
   bool has_nodal_fbar_ = false;
   std::vector<double> elem_volume_, elem_pressure_weight_, elem_volume_gradient_, node_J_, node_Q_,

@@ -10,7 +10,7 @@
 #include <cmath>
 
 #include "engine/element_kernel.hpp"
-#include "engine/ordered_sum.hpp"
+#include "engine/exact_sum.hpp"
 #include "engine/parallel_threshold.hpp"
 #include "materials/symmetric_eigen3.hpp"
 
@@ -40,13 +40,13 @@ double Simulation::bodies_volume(std::span<const std::uint8_t> body_mask) const 
 
 Energies Simulation::energies() const {
   Energies e;
-  e.kinetic = ordered_sum(
-      model_.node_count,
-      [&](std::int64_t n) {
-        const double* v = model_.v.data() + 3 * n;
-        return 0.5 * model_.mass[n] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-      },
-      sum_scratch_);
+  ExactSum kinetic[1] = {exact_sum_of(model_.node_count, [&](std::int64_t n) {
+    if (!owns_node(n)) return 0.0;
+    const double* v = model_.v.data() + 3 * n;
+    return 0.5 * model_.mass[n] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  })};
+  reduce(kinetic);
+  e.kinetic = kinetic[0].value();
   e.internal = internal_energy_;
   e.plastic_dissipation = plastic_dissipation_;
   e.contact_dissipation = contact_dissipation_;

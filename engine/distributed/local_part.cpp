@@ -76,6 +76,7 @@ LocalPart local_part(const Model& m, const Partition& p, int rank, int layers) {
       if (p.node_rank[n] == rank) nb.send.push_back(local[n]);
     if (!nb.receive.empty() || !nb.send.empty()) part.neighbours.push_back(std::move(nb));
   }
+  for (const Body& b : m.bodies) part.body_first_element.push_back(b.first_element);
   return part;
 }
 

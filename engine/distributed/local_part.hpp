@@ -32,6 +32,8 @@ struct LocalPart {
     std::vector<std::int32_t> send;     // owned here, held by `rank`
   };
   std::vector<Neighbour> neighbours;
+  // the first global element of each body (to name an element in messages on every rank)
+  std::vector<std::int32_t> body_first_element;
 };
 
 // How deep the held elements must reach around the owned nodes: 1, or 3 if any element uses

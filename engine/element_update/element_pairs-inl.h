@@ -77,12 +77,17 @@ HWY_INLINE PairOf corner_altitudes(const double* xe0, const double* xe1) {
   const Lanes8 b0 = load8(b[0]), b1 = load8(b[1]), b2 = load8(b[2]);
   const Lanes8 c0 = a1 * b2 - a2 * b1, c1 = a2 * b0 - a0 * b2, c2 = a0 * b1 - a1 * b0;
   const PairOf area2 = max4(sqrt(c0 * c0 + c1 * c1 + c2 * c2));
-  // 6 V = e01 . (e02 x e03): lane 0's a, lane 1's b and lane 2's b
+  // 6 V = e03 . (e01 x e02): lane 1's b with lane 0's c. With explicit fused multiply-adds, so
+  // that both elements of the pair round alike (left to the compiler, the two copies of an
+  // expression may be contracted differently: an element's bits would then depend on its place
+  // in the pair, which a distributed run's renumbering changes)
+  alignas(64) double c[3][8];
+  store8(c0, c[0]);
+  store8(c1, c[1]);
+  store8(c2, c[2]);
   auto vol6 = [&](int el) {
     const int l = 4 * el;
-    return a[0][l] * (b[1][l] * b[2][l + 1] - b[2][l] * b[1][l + 1]) -
-           a[1][l] * (b[0][l] * b[2][l + 1] - b[2][l] * b[0][l + 1]) +
-           a[2][l] * (b[0][l] * b[1][l + 1] - b[1][l] * b[0][l + 1]);
+    return std::fma(b[0][l + 1], c[0][l], std::fma(b[1][l + 1], c[1][l], b[2][l + 1] * c[2][l]));
   };
   return {vol6(0) / area2.first, vol6(1) / area2.second};
 }

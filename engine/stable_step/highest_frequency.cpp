@@ -7,7 +7,7 @@
 
 #include "elements/tet10_elastic_action.hpp"
 #include "engine/element_gather.hpp"
-#include "engine/ordered_sum.hpp"
+#include "engine/exact_sum.hpp"
 #include "engine/parallel_threshold.hpp"
 
 namespace femdem {
@@ -83,9 +83,8 @@ void HighestFrequency::apply(const Model& m, const std::vector<ContactSpring>& s
 }
 
 double HighestFrequency::dot(const double* a, const double* b) {
-  return ordered_sum(
-      static_cast<std::int64_t>(inv_sqrt_mass_.size()), [&](std::int64_t i) { return a[i] * b[i]; },
-      sum_scratch_);
+  return exact_sum(static_cast<std::int64_t>(inv_sqrt_mass_.size()),
+                   [&](std::int64_t i) { return a[i] * b[i]; });
 }
 
 FrequencyEstimate HighestFrequency::estimate(const Model& m,

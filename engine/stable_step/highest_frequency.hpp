@@ -68,7 +68,7 @@ class HighestFrequency {
   std::vector<double> inv_sqrt_mass_;   // per dof, 0 where the dof does not move
   std::vector<double> start_;           // the last estimate's eigenvector (empty: none yet)
   std::vector<float> basis_;            // Lanczos vectors of the current estimate
-  std::vector<double> v_prev_, v_, w_, u_, f_, element_force_, sum_scratch_;
+  std::vector<double> v_prev_, v_, w_, u_, f_, element_force_;
 };
 
 }  // namespace femdem

@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// The ranks of a distributed run, and the few things they do together (docs/ARCHITECTURE.md,
+// "Distributed runs"): add exact sums, take minima, agree on a flag, and pass the ghost nodes'
+// values from their owners. MPI (Open MPI) is behind this interface: only communicator.cpp
+// includes mpi.h. MPI is started only when the program was launched by mpirun (or a batch
+// system's launcher), so a plain `femdem run` never touches it and runs as one rank.
+#include <cstdint>
+#include <span>
+#include <string>
+
+#include "engine/distributed/local_part.hpp"
+#include "engine/exact_sum.hpp"
+
+namespace femdem {
+
+class Communicator {
+ public:
+  // True when a launcher started this process as one of several ranks (its environment says so).
+  static bool launched_by_mpi();
+  // The world of this run: on first use starts MPI if launched by mpirun (and stops it at
+  // exit), else a world of one rank.
+  static Communicator& world();
+
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+
+  // Every rank gets the totals of the ranks' accumulators (their limbs added as integers: exact).
+  void sum(std::span<ExactSum> sums) const;
+  double min(double x) const;
+  std::int64_t min(std::int64_t x) const;
+  bool all(bool flag) const;
+  // The ghost nodes' values from their owners: `width` doubles per node of `part`, in local
+  // numbering; each rank sends its owned nodes that others hold and receives its ghosts.
+  void exchange(const LocalPart& part, double* values, int width) const;
+  // Stops every rank with `code` (what a failing rank calls, so that none waits for it forever).
+  [[noreturn]] void abort(int code) const;
+
+ private:
+  Communicator(int rank, int size) : rank_(rank), size_(size) {}
+  int rank_ = 0, size_ = 1;
+};
+
+}  // namespace femdem
