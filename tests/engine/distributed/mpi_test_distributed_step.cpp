@@ -9,7 +9,7 @@
 
 #include "engine/distributed/communicator.hpp"
 #include "engine/simulation.hpp"
-#include "support/kuhn_box.hpp"
+#include "support/steel_bar.hpp"
 
 using namespace femdem;
 
@@ -18,19 +18,8 @@ namespace {
 // A 12 x 3 x 3-cell steel bar, bent and stretched by its initial velocity (every node moves
 // differently), no supports: elastic, nothing but the elements.
 ModelSpec vibrating_bar() {
-  ModelSpec s;
+  ModelSpec s = test::steel_bar();
   s.simulation.stable_step = SimulationSettings::StableStep::element;
-  MaterialParams mat;
-  mat.name = "steel";
-  mat.density = 7800.0;
-  mat.youngs_modulus = 200e9;
-  mat.poisson_ratio = 0.3;
-  s.materials.push_back(mat);
-  BodySpec b;
-  b.name = "bar";
-  b.material = 0;
-  b.mesh = test::kuhn_box(12, 3, 3, Vec3(0.4, 0.1, 0.1), 0.2);
-  s.bodies.push_back(b);
   return s;
 }
 

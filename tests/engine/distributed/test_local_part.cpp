@@ -10,7 +10,7 @@
 
 #include "engine/distributed/local_part.hpp"
 #include "engine/simulation.hpp"
-#include "support/kuhn_box.hpp"
+#include "support/steel_bar.hpp"
 
 using namespace femdem;
 
@@ -19,19 +19,7 @@ namespace {
 // A 12 x 3 x 3-cell bar, its corners moved at random by up to 2 % of a cell (a deformed state
 // with forces everywhere).
 Model deformed_bar(FbarMode fbar) {
-  ModelSpec s;
-  MaterialParams mat;
-  mat.name = "steel";
-  mat.density = 7800.0;
-  mat.youngs_modulus = 200e9;
-  mat.poisson_ratio = 0.3;
-  s.materials.push_back(mat);
-  BodySpec b;
-  b.name = "bar";
-  b.material = 0;
-  b.fbar = fbar;
-  b.mesh = test::kuhn_box(12, 3, 3, Vec3(0.4, 0.1, 0.1), 0.2);
-  s.bodies.push_back(b);
+  const ModelSpec s = test::steel_bar(fbar);
   Model m = build_model(s);
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-1.0, 1.0);

@@ -10,6 +10,7 @@
 #include "engine/errors.hpp"
 #include "engine/simulation.hpp"
 #include "support/kuhn_box.hpp"
+#include "support/steel_bar.hpp"
 
 using namespace femdem;
 
@@ -17,12 +18,7 @@ namespace {
 
 ModelSpec boxes(int nx_bodies, int ny_bodies, int cells, Vec3 size) {
   ModelSpec s;
-  MaterialParams mat;
-  mat.name = "steel";
-  mat.density = 7800.0;
-  mat.youngs_modulus = 200e9;
-  mat.poisson_ratio = 0.3;
-  s.materials.push_back(mat);
+  s.materials.push_back(test::elastic_material("steel", 7800.0, 200e9, 0.3));
   for (int j = 0; j < ny_bodies; ++j)
     for (int i = 0; i < nx_bodies; ++i) {
       BodySpec b;
@@ -39,16 +35,10 @@ ModelSpec boxes(int nx_bodies, int ny_bodies, int cells, Vec3 size) {
   return s;
 }
 
-ModelSpec bar() {
-  ModelSpec s = boxes(1, 1, 1, Vec3(1, 1, 1));
-  s.bodies[0].mesh = test::kuhn_box(12, 3, 3, Vec3(0.4, 0.1, 0.1), 0.2);
-  return s;
-}
-
 }  // namespace
 
 TEST(Partition, OneBodyIsCutIntoBalancedPartsAlongFaces) {
-  const Model m = build_model(bar());  // 12 x 3 x 3 cells, 648 elements
+  const Model m = build_model(test::steel_bar());  // 12 x 3 x 3 cells, 648 elements
   for (int parts : {2, 3}) {
     const Partition p = partition_model(m, parts);
     ASSERT_EQ(p.element_rank.size(), static_cast<std::size_t>(m.element_count));
