@@ -313,8 +313,6 @@ void Simulation::check_distributable() const {
     missing = "walls";
   else if (m.bodies.size() > 1)
     missing = "more than one body";
-  else if (s.stable_step == SimulationSettings::StableStep::assembled)
-    missing = "simulation.stable_step = \"assembled\" (use \"element\")";
   else if (s.mass_scaling_time_step > 0.0)
     missing = "simulation.mass_scaling_time_step";
   else if (s.deformation_damping > 0.0)
@@ -454,7 +452,7 @@ double Simulation::assembled_step(double bound, bool force) {
     for (const ContactModel* c :
          std::initializer_list<const ContactModel*>{&wall_contact_, &body_contact_})
       if (c->active()) c->append_springs(m, springs_);
-    const FrequencyEstimate est = frequency_->estimate(m, springs_);
+    const FrequencyEstimate est = frequency_->estimate(m, springs_, dist_ ? &*dist_ : nullptr);
     ++frequency_estimates_;
     frequency_iterations_ += est.iterations;
     estimate_step_ = steps_;

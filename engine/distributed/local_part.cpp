@@ -77,6 +77,7 @@ LocalPart local_part(const Model& m, const Partition& p, int rank, int layers) {
     if (!nb.receive.empty() || !nb.send.empty()) part.neighbours.push_back(std::move(nb));
   }
   for (const Body& b : m.bodies) part.body_first_element.push_back(b.first_element);
+  part.global_node_count = m.node_count;
   return part;
 }
 

@@ -34,6 +34,7 @@ struct LocalPart {
   std::vector<Neighbour> neighbours;
   // the first global element of each body (to name an element in messages on every rank)
   std::vector<std::int32_t> body_first_element;
+  std::int32_t global_node_count = 0;
 };
 
 // How deep the held elements must reach around the owned nodes: 1, or 3 if any element uses

@@ -80,17 +80,30 @@ void HighestFrequency::apply(const Model& m, const std::vector<ContactSpring>& s
   apply_stiffness(m, springs, u_.data(), f_.data());
 #pragma omp parallel for schedule(static) if (n > 3 * kParallelMinNodes)
   for (std::int64_t i = 0; i < n; ++i) y[i] = inv_sqrt_mass_[i] * f_[i];
+  // (the ghosts' entries are incomplete sums: their owners have them whole)
+  if (dist_) dist_->comm->exchange(dist_->part, y, 3);
 }
 
 double HighestFrequency::dot(const double* a, const double* b) {
-  return exact_sum(static_cast<std::int64_t>(inv_sqrt_mass_.size()),
-                   [&](std::int64_t i) { return a[i] * b[i]; });
+  ExactSum s[1] = {exact_sum_of(
+      static_cast<std::int64_t>(inv_sqrt_mass_.size()),
+      [&](std::int64_t i) { return !dist_ || dist_->part.node_owned[i / 3] ? a[i] * b[i] : 0.0; })};
+  if (dist_) dist_->comm->sum(s);
+  return s[0].value();
 }
 
 FrequencyEstimate HighestFrequency::estimate(const Model& m,
-                                             const std::vector<ContactSpring>& springs) {
+                                             const std::vector<ContactSpring>& springs,
+                                             const Distribution* dist) {
   FrequencyEstimate out;
+  dist_ = dist;
   const std::size_t n = inv_sqrt_mass_.size();
+  // the start vector's entries and size are the whole model's (the global dof numbering)
+  auto global_dof = [&](std::size_t i) {
+    return dist ? 3 * static_cast<std::size_t>(dist->part.nodes[i / 3]) + i % 3 : i;
+  };
+  const std::size_t n_global =
+      dist ? 3 * static_cast<std::size_t>(dist->part.global_node_count) : n;
   for (std::size_t i = 0; i < n; ++i)
     inv_sqrt_mass_[i] =
         (m.dof_mode[i] == 0 && m.mass[i / 3] > 0.0) ? 1.0 / std::sqrt(m.mass[i / 3]) : 0.0;
@@ -98,7 +111,7 @@ FrequencyEstimate HighestFrequency::estimate(const Model& m,
   // start: the last eigenvector (the model has changed little since), else every mode
   if (start_.size() != n) {
     start_.resize(n);
-    for (std::size_t i = 0; i < n; ++i) start_[i] = start_entry(i);
+    for (std::size_t i = 0; i < n; ++i) start_[i] = start_entry(global_dof(i));
   }
   for (std::size_t i = 0; i < n; ++i) v_[i] = inv_sqrt_mass_[i] > 0.0 ? start_[i] : 0.0;
   double norm = std::sqrt(dot(v_.data(), v_.data()));
@@ -106,8 +119,8 @@ FrequencyEstimate HighestFrequency::estimate(const Model& m,
   // elsewhere) is in the start too: Lanczos brings a small component of the top mode up fast
   for (std::size_t i = 0; i < n; ++i)
     if (inv_sqrt_mass_[i] > 0.0)
-      v_[i] =
-          (norm > 0.0 ? v_[i] / norm : 0.0) + kFreshShare * start_entry(i) / std::sqrt(n / 12.0);
+      v_[i] = (norm > 0.0 ? v_[i] / norm : 0.0) +
+              kFreshShare * start_entry(global_dof(i)) / std::sqrt(n_global / 12.0);
   norm = std::sqrt(dot(v_.data(), v_.data()));
   if (!(norm > 0.0)) return out;  // nothing moves
   for (double& a : v_) a /= norm;

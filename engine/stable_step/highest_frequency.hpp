@@ -14,11 +14,15 @@
 // bounds the distance to the nearest eigenvalue, so that it errs on the high (safe) side.
 //
 // Deterministic: the element pass writes per-element buffers gathered in the fixed CSR order
-// and every dot product is an ordered sum, so the result has the same bits for any thread count.
+// and every dot product is an exact sum, so the result has the same bits for any thread count;
+// and for any split among the ranks of a distributed run (engine/distributed): each rank sums
+// its owned dofs, takes its ghosts' entries of each new vector from their owners, and numbers
+// the start vector by the global dofs.
 #include <array>
 #include <cstdint>
 #include <vector>
 
+#include "engine/distributed/distribution.hpp"
 #include "engine/model.hpp"
 #include "engine/state_archive.hpp"
 
@@ -48,7 +52,9 @@ class HighestFrequency {
   // estimate's start); tolerance: the residual relative to the Ritz value at which to stop.
   explicit HighestFrequency(const Model& m, int max_iterations = 24, double tolerance = 0.01);
 
-  FrequencyEstimate estimate(const Model& m, const std::vector<ContactSpring>& springs);
+  // `dist`: this rank's part of a distributed run (the estimate is then the whole model's).
+  FrequencyEstimate estimate(const Model& m, const std::vector<ContactSpring>& springs,
+                             const Distribution* dist = nullptr);
 
   // Applies K (elements at the current shape and the springs) to u, 3 per node: for tests.
   void apply_stiffness(const Model& m, const std::vector<ContactSpring>& springs, const double* u,
@@ -61,6 +67,7 @@ class HighestFrequency {
  private:
   void apply(const Model& m, const std::vector<ContactSpring>& springs, const double* v, double* y);
   double dot(const double* a, const double* b);
+  const Distribution* dist_ = nullptr;  // of the estimate under way
 
   int max_iterations_;
   double tolerance_;

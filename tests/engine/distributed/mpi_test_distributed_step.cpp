@@ -17,9 +17,9 @@ namespace {
 
 // A 12 x 3 x 3-cell steel bar, bent and stretched by its initial velocity (every node moves
 // differently), no supports: elastic, nothing but the elements.
-ModelSpec vibrating_bar() {
+ModelSpec vibrating_bar(SimulationSettings::StableStep estimate) {
   ModelSpec s = test::steel_bar();
-  s.simulation.stable_step = SimulationSettings::StableStep::element;
+  s.simulation.stable_step = estimate;
   return s;
 }
 
@@ -53,7 +53,7 @@ TEST(Distributed, ExactSumsAddAcrossRanks) {
 
 TEST(Distributed, GhostsReceiveTheirOwnersValues) {
   const Communicator& c = Communicator::world();
-  const Model m = build_model(vibrating_bar());
+  const Model m = build_model(vibrating_bar(SimulationSettings::StableStep::element));
   const Partition p = partition_model(m, c.size());
   const LocalPart part = local_part(m, p, c.rank(), ghost_layers(m));
   std::vector<double> values(2 * part.nodes.size(), std::nan(""));
@@ -70,9 +70,10 @@ namespace {
 
 // 200 steps of the bar on every rank's part against one process on each rank, with the SIMD
 // element update (whose pairs of elements the renumbering regroups) and the scalar one.
-void expect_same_bits_as_one_process(ElementKernelChoice kernel) {
+void expect_same_bits_as_one_process(ElementKernelChoice kernel,
+                                     SimulationSettings::StableStep estimate) {
   const Communicator& c = Communicator::world();
-  const Model global = with_velocity(build_model(vibrating_bar()));
+  const Model global = with_velocity(build_model(vibrating_bar(estimate)));
   Simulation whole(global);
   const Partition p = partition_model(global, c.size());
   const LocalPart part = local_part(global, p, c.rank(), ghost_layers(global));
@@ -107,9 +108,18 @@ void expect_same_bits_as_one_process(ElementKernelChoice kernel) {
 }  // namespace
 
 TEST(Distributed, BarStepsWithTheSameBitsAsOneProcess) {
-  expect_same_bits_as_one_process(ElementKernelChoice::simd);
+  expect_same_bits_as_one_process(ElementKernelChoice::simd,
+                                  SimulationSettings::StableStep::element);
 }
 
 TEST(Distributed, BarStepsWithTheSameBitsAsOneProcessScalarKernel) {
-  expect_same_bits_as_one_process(ElementKernelChoice::scalar);
+  expect_same_bits_as_one_process(ElementKernelChoice::scalar,
+                                  SimulationSettings::StableStep::element);
+}
+
+// The default stable step: Lanczos iterations over the whole model, its vectors' ghosts
+// exchanged and its dot products summed over the ranks.
+TEST(Distributed, BarStepsWithTheSameBitsAsOneProcessAssembledStep) {
+  expect_same_bits_as_one_process(ElementKernelChoice::simd,
+                                  SimulationSettings::StableStep::assembled);
 }
