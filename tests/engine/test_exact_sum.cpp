@@ -27,9 +27,9 @@ double exact(const std::vector<double>& terms) {
 TEST(ExactSum, CancellationThatAPlainSumGetsWrong) {
   EXPECT_EQ(exact({1e16, 1.0, -1e16}), 1.0);  // a plain sum: 0
   EXPECT_EQ(exact({1.0, 1e100, 1.0, -1e100}), 2.0);
-  EXPECT_EQ(exact({1e308, 1e308, -1e308}), 1e308);  // no overflow on the way
+  EXPECT_EQ(exact({1e308, 1e308, -1e308}), 1e308);      // no overflow on the way
   EXPECT_EQ(exact(std::vector<double>(10, 0.1)), 1.0);  // the correctly rounded answer
-  EXPECT_EQ(exact({0.1, 0.2}), 0.1 + 0.2);  // two terms: one rounding, as IEEE addition
+  EXPECT_EQ(exact({0.1, 0.2}), 0.1 + 0.2);              // two terms: one rounding, as IEEE addition
   EXPECT_EQ(exact({}), 0.0);
   EXPECT_EQ(exact({-3.5, 1.25}), -2.25);
   // ties to even: 2^53 + 1 is halfway between 2^53 and 2^53 + 2
