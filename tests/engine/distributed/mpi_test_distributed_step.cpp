@@ -1,13 +1,15 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Distributed runs on 2 and 3 ranks (run by ctest under mpirun; docs/ARCHITECTURE.md,
 // "Distributed runs"): exact sums added across ranks, ghost nodes receiving their owners'
-// values, and a vibrating bar stepped on the ranks with the same bits as in one process.
+// values, a vibrating bar stepped on the ranks with the same bits as in one process, and what
+// distributed runs cannot do yet refused alike on every rank.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
 #include "engine/distributed/communicator.hpp"
+#include "engine/errors.hpp"
 #include "engine/simulation.hpp"
 #include "support/steel_bar.hpp"
 
@@ -122,4 +124,26 @@ TEST(Distributed, BarStepsWithTheSameBitsAsOneProcessScalarKernel) {
 TEST(Distributed, BarStepsWithTheSameBitsAsOneProcessAssembledStep) {
   expect_same_bits_as_one_process(ElementKernelChoice::simd,
                                   SimulationSettings::StableStep::assembled);
+}
+
+// What distributed runs cannot do yet is refused on every rank alike, before any exchange (so
+// that no rank waits for another), naming what to change.
+TEST(Distributed, WhatIsNotYetDistributedIsAnInputErrorOnEveryRank) {
+  const Communicator& c = Communicator::world();
+  ModelSpec s = vibrating_bar(SimulationSettings::StableStep::element);
+  WallSpec floor;
+  floor.name = "floor";
+  floor.point = Vec3(0.0, 0.0, -0.01);
+  s.walls.push_back(floor);
+  const Model global = build_model(s);
+  const LocalPart part = local_part(global, partition_model(global, c.size()), c.rank(), 1);
+  try {
+    Simulation mine(local_model(global, part), Distribution{part, &c});
+    FAIL() << "a scene with walls ran distributed";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("distributed runs cannot yet do this scene: walls"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_TRUE(c.all(true));  // every rank got here
 }
