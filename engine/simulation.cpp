@@ -31,7 +31,7 @@ Simulation::Simulation(Model model, std::optional<Distribution> distribution)
       dist_(std::move(distribution)),
       kernels_(compile_kernels(model_.materials)),
       element_pass_(model_, kernels_),
-      wall_contact_(model_, model_.contact.patch_loads()),
+      wall_contact_(model_, model_.contact.patch_loads(), dist_ ? &*dist_ : nullptr),
       body_contact_(model_) {
   const auto nn = static_cast<std::size_t>(model_.node_count);
   const auto ne = static_cast<std::size_t>(model_.element_count);
@@ -309,14 +309,16 @@ void Simulation::check_distributable() const {
   const Model& m = model_;
   const SimulationSettings& s = m.settings;
   std::string missing;
-  if (!m.walls.empty())
-    missing = "walls";
-  else if (m.bodies.size() > 1)
+  const auto& body_rank = dist_->part.body_rank;
+  const bool cut = std::find(body_rank.begin(), body_rank.end(), -1) != body_rank.end();
+  if (m.bodies.size() > 1)
     missing = "more than one body";
   else if (s.mass_scaling_time_step > 0.0)
     missing = "simulation.mass_scaling_time_step";
   else if (s.deformation_damping > 0.0)
     missing = "simulation.deformation_damping";
+  else if (cut && m.contact.patch_loads())
+    missing = "contact.impact_damping or rolling_resistance on a body cut among ranks";
   if (!missing.empty())
     throw InputError("distributed runs cannot yet do this scene: " + missing +
                      " (issue 23, docs/ARCHITECTURE.md \"Distributed runs\"); run it as one "

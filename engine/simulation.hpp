@@ -63,6 +63,9 @@ class Simulation {
   // energies() and the stable step are then the whole model's, and every rank must call
   // step() and energies() alike. Throws InputError for what distributed runs cannot do yet.
   explicit Simulation(Model model, std::optional<Distribution> distribution = std::nullopt);
+  // (its parts keep pointers to its distribution)
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
 
   // One step. Throws InstabilityError (with body, element, time and advice) on det F <= 0 or
   // non-finite values.
@@ -92,7 +95,9 @@ class Simulation {
   BodyState body_state(int body) const;
   // The cheap part of body_state (no volume, no bounding box), for per-step monitoring.
   BodyState body_motion(int body) const;
-  // body_motion of every body (in parallel over bodies), into `out`.
+  // body_motion of every body (in parallel over bodies), into `out`. Distributed: every rank
+  // calls it, and `out` is complete on rank 0 (a body cut among ranks is summed exactly over
+  // the ranks: equal to one process's to round-off, not to the bit).
   void body_motions(std::vector<BodyState>& out) const;
   // Largest principal Cauchy stress (tension positive) over the body's Gauss points now: the
   // peak tension that cracks concrete, e.g. in the arms of a dropped armour unit.
@@ -109,6 +114,11 @@ class Simulation {
   // (-trace/3), equivalent plastic strain.
   void element_stress(std::vector<double>& stress6, std::vector<double>& von_mises,
                       std::vector<double>& pressure, std::vector<double>& eq_plastic) const;
+
+  // Rank 0's whole-model Simulation in a distributed run, which is not stepped, takes a
+  // part's clock after each step: time, step count, step sizes and the estimates' counters
+  // (tools/femdem/run/rank_group.hpp).
+  void follow_clock(const Simulation& part);
 
   // Saves the whole state between two steps into the archive, or loads it into a Simulation
   // built from the same scene (engine/simulation_checkpoint.cpp): the steps after a load are the
@@ -140,6 +150,7 @@ class Simulation {
   }
   double reduce_min(double x) const { return dist_ ? dist_->comm->min(x) : x; }
   void check_distributable() const;
+  void gather_body_motions(std::vector<BodyState>& out) const;
   // Throws InstabilityError once the balance's change exceeds settings.energy_balance_limit
   // times the largest energy seen (at least energy_floor_).
   void check_energy_balance(const Energies& en) const;

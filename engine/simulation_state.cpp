@@ -8,6 +8,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "engine/element_kernel.hpp"
 #include "engine/exact_sum.hpp"
@@ -36,6 +37,16 @@ double Simulation::bodies_volume(std::span<const std::uint8_t> body_mask) const 
   for (std::int32_t e = 0; e < ne; ++e)
     if (body_mask[m.element_body[e]]) v += ve[e];
   return v;
+}
+
+void Simulation::follow_clock(const Simulation& part) {
+  time_ = part.time_;
+  steps_ = part.steps_;
+  dt_ = part.dt_;
+  stable_dt_ = part.stable_dt_;
+  stable_bound_ = part.stable_bound_;
+  frequency_estimates_ = part.frequency_estimates_;
+  frequency_iterations_ = part.frequency_iterations_;
 }
 
 Energies Simulation::energies() const {
@@ -91,9 +102,89 @@ BodyState Simulation::body_motion(int bi) const {
 void Simulation::body_motions(std::vector<BodyState>& out) const {
   const auto nb = static_cast<std::int64_t>(model_.bodies.size());
   out.resize(model_.bodies.size());
+  // (distributed: only the bodies this rank holds whole)
+  const int rank = dist_ ? dist_->comm->rank() : 0;
 #pragma omp parallel for schedule(dynamic, \
                                   1) if (nb > 1 && model_.node_count > kParallelMinElements)
-  for (std::int64_t b = 0; b < nb; ++b) out[b] = body_motion(static_cast<int>(b));
+  for (std::int64_t b = 0; b < nb; ++b)
+    if (!dist_ || dist_->part.body_rank[b] == rank) out[b] = body_motion(static_cast<int>(b));
+  if (dist_) gather_body_motions(out);
+}
+
+void Simulation::gather_body_motions(std::vector<BodyState>& out) const {
+  // The bodies held whole go to rank 0 from their rank, as they are. A body cut among ranks is
+  // summed exactly over each rank's owned nodes and the sums added: not the bits of one
+  // process's serial sum (the restitution monitors' per-step speeds of such a body agree with
+  // it to round-off; history rows and frames read the gathered state and keep the bits).
+  const Model& m = model_;
+  const Communicator& comm = *dist_->comm;
+  const std::vector<std::int32_t>& body_rank = dist_->part.body_rank;
+  constexpr int kSums = 11;  // mass, m x, m v, kinetic energy, contact force
+  std::vector<ExactSum> cut;
+  std::vector<std::size_t> cut_bodies;
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    if (body_rank[b] >= 0) continue;
+    cut_bodies.push_back(b);
+    cut.resize(cut.size() + kSums);
+    ExactSum* s = cut.data() + cut.size() - kSums;
+    const Body& body = m.bodies[b];
+    for (std::int32_t n = body.first_node; n < body.first_node + body.node_count; ++n) {
+      if (!owns_node(n)) continue;
+      const double mn = m.mass[n];
+      const double* x = m.x.data() + 3 * static_cast<std::size_t>(n);
+      const double* v = m.v.data() + 3 * static_cast<std::size_t>(n);
+      const double* f = m.f_contact.data() + 3 * static_cast<std::size_t>(n);
+      s[0].add(mn);
+      for (int k = 0; k < 3; ++k) s[1 + k].add(mn * x[k]), s[4 + k].add(mn * v[k]);
+      s[7].add(0.5 * mn * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
+      for (int k = 0; k < 3; ++k) s[8 + k].add(f[k]);
+    }
+  }
+  reduce(cut);
+  constexpr int kNumbers = 12;
+  std::vector<double> mine;
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    if (body_rank[b] != comm.rank()) continue;
+    const BodyState& s = out[b];
+    const double row[kNumbers] = {
+        s.mass,           s.added_mass,       s.com[0],           s.com[1],
+        s.com[2],         s.vcom[0],          s.vcom[1],          s.vcom[2],
+        s.kinetic_energy, s.contact_force[0], s.contact_force[1], s.contact_force[2]};
+    mine.insert(mine.end(), row, row + kNumbers);
+  }
+  const auto* bytes = reinterpret_cast<const std::byte*>(mine.data());
+  const std::vector<std::vector<std::byte>> all =
+      comm.gather({bytes, mine.size() * sizeof(double)});
+  if (comm.rank() != 0) return;
+  for (int r = 0; r < comm.size(); ++r) {
+    std::size_t at = 0;
+    for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+      if (body_rank[b] != r) continue;
+      double row[kNumbers];
+      std::memcpy(row, all[r].data() + at, sizeof row);
+      at += sizeof row;
+      BodyState& s = out[b];
+      s = BodyState{};
+      s.mass = row[0];
+      s.added_mass = row[1];
+      s.com = Vec3(row[2], row[3], row[4]);
+      s.vcom = Vec3(row[5], row[6], row[7]);
+      s.kinetic_energy = row[8];
+      s.contact_force = Vec3(row[9], row[10], row[11]);
+    }
+  }
+  for (std::size_t k = 0; k < cut_bodies.size(); ++k) {
+    const ExactSum* s = cut.data() + kSums * k;
+    BodyState& o = out[cut_bodies[k]];
+    o = BodyState{};
+    o.mass = m.bodies[cut_bodies[k]].mass;
+    o.added_mass = body_added_mass_[cut_bodies[k]];
+    const double msum = s[0].value();
+    o.com = Vec3(s[1].value(), s[2].value(), s[3].value()) / msum;
+    o.vcom = Vec3(s[4].value(), s[5].value(), s[6].value()) / msum;
+    o.kinetic_energy = s[7].value();
+    o.contact_force = Vec3(s[8].value(), s[9].value(), s[10].value());
+  }
 }
 
 BodyState Simulation::body_state(int bi) const {

@@ -30,22 +30,30 @@ double reach_buffer(const Model& m) {
 
 }  // namespace
 
-WallContact::WallContact(const Model& m, bool collect_patches)
-    : active_(!m.walls.empty()), collect_patches_(collect_patches), moved_(reach_buffer(m)) {
+WallContact::WallContact(const Model& m, bool collect_patches, const Distribution* dist)
+    : dist_(dist),
+      active_(!m.walls.empty()),
+      collect_patches_(collect_patches),
+      moved_(reach_buffer(m)) {
   const std::optional<WallLaw> law = wall_law_named(m.contact.wall_law);
   if (!law)
     throw std::invalid_argument("unknown wall law '" + std::string(m.contact.wall_law) + "'");
   law_ = *law;
   for (const Wall& w : m.walls) friction_ = friction_ || w.friction > 0.0;
-  reach_buffer_ = moved_.buffer();
+  // (the same buffer on every rank: the thinnest element behind any boundary node)
+  reach_buffer_ = reduce_min(moved_.buffer());
+  moved_ = VerletBuffer(reach_buffer_);
   for (std::size_t si = 0; si < m.surface.size(); ++si)
-    if (!m.bodies[m.surface[si].body].fixed) tracked_.push_back(static_cast<std::uint32_t>(si));
+    if (!m.bodies[m.surface[si].body].fixed &&
+        (!dist_ || dist_->part.node_owned[m.surface[si].node]))
+      tracked_.push_back(static_cast<std::uint32_t>(si));
   tracked_positions_.resize(tracked_.size());
   wall_offset_at_build_.assign(m.walls.size(), 0.0);
   stiffness_.assign(m.walls.size(), 0.0);
   penetration_.assign(m.walls.size(), 0.0);
   penetration_per_size_.assign(m.walls.size(), 0.0);
   deepest_body_.assign(m.walls.size(), -1);
+  force_sums_.resize(3 * m.walls.size());
   if (collect_patches_) patches_.assign(m.bodies.size() * m.walls.size(), ContactPatch{});
 }
 
@@ -59,9 +67,6 @@ void WallContact::compute(Model& m, double step_dt, std::vector<double>& f, Cont
   std::visit(
       [&]<class Law>(const Law&) {
         refresh_near<Law>(m);
-        // springs released by a rebuild outside compute() (in stable_step) are booked now
-        sums.friction_dissipated += released_;
-        released_ = 0.0;
         compute_with<Law>(m, step_dt, f, sums);
       },
       law_);
@@ -100,7 +105,8 @@ void WallContact::refresh_near(const Model& m) {
     travel = std::max(
         travel, std::fabs(m.walls[wi].point.dot(m.walls[wi].normal) - wall_offset_at_build_[wi]));
   // a node's distance to a wall changes by at most its displacement plus the wall's travel
-  if (moved_.max_displacement(tracked_positions_) + travel <= reach_buffer_) return;
+  // (on every rank when on any: the list stays the one process's, cut by owner)
+  if (!any_rank(moved_.max_displacement(tracked_positions_) + travel > reach_buffer_)) return;
   build_near(m);
   if (!friction_) return;
   // carry each kept pair's friction spring over (both lists are sorted); one that left with
@@ -129,6 +135,13 @@ void WallContact::compute_with(Model& m, double step_dt, std::vector<double>& f,
                                ContactSums& sums) {
   const double* x = m.x.data();
   const std::size_t nw = m.walls.size();
+  // the step's accounts: springs released by a rebuild outside compute() (in stable_step) are
+  // booked now
+  enum { kEnergy, kDamping, kFriction, kSums };
+  ExactSum accounts[kSums];
+  accounts[kFriction].add(released_);
+  released_ = 0.0;
+  for (ExactSum& e : force_sums_) e = ExactSum{};
   for (std::size_t q = 0; q < near_.size(); ++q) {
     const std::size_t si = near_[q].surface, wi = near_[q].wall;
     const SurfaceNode& s = m.surface[si];
@@ -143,7 +156,11 @@ void WallContact::compute_with(Model& m, double step_dt, std::vector<double>& f,
       const Wall::Push push = w.push(p);
       const double d = push.depth;
       if (!(d > 0.0)) {
-        if (slip) Law::release(k, slip, sums);
+        if (slip) {
+          ContactSums released;
+          Law::release(k, slip, released);
+          accounts[kFriction].add(released.friction_dissipated);
+        }
         continue;
       }
       penetration_[wi] = std::max(penetration_[wi], d);
@@ -165,10 +182,42 @@ void WallContact::compute_with(Model& m, double step_dt, std::vector<double>& f,
                                 .step_dt = step_dt,
                                 .normal = push.normal,
                                 .v_rel = v - w.step_velocity};
-      const Vec3 fc = Law::apply(in, slip, sums);
-      for (int c = 0; c < 3; ++c) f[3 * s.node + c] += fc[c];
-      w.force -= fc;
+      ContactSums pair;
+      const Vec3 fc = Law::apply(in, slip, pair);
+      accounts[kEnergy].add(pair.energy);
+      accounts[kDamping].add(pair.damping_power);
+      accounts[kFriction].add(pair.friction_dissipated);
+      for (int c = 0; c < 3; ++c) {
+        f[3 * s.node + c] += fc[c];
+        force_sums_[3 * wi + c].add(-fc[c]);
+      }
     }
+  }
+  reduce(accounts);
+  reduce(force_sums_);
+  sums.energy += accounts[kEnergy].value();
+  sums.damping_power += accounts[kDamping].value();
+  sums.friction_dissipated += accounts[kFriction].value();
+  for (std::size_t wi = 0; wi < nw; ++wi)
+    m.walls[wi].force = Vec3(force_sums_[3 * wi].value(), force_sums_[3 * wi + 1].value(),
+                             force_sums_[3 * wi + 2].value());
+  reduce_deepest();
+}
+
+void WallContact::reduce_deepest() {
+  if (!dist_) return;
+  // the deepest node over the ranks; its body as one process finds it: the first (lowest
+  // boundary node, so lowest body) among those as deep
+  const Communicator& comm = *dist_->comm;
+  for (std::size_t wi = 0; wi < penetration_.size(); ++wi) {
+    penetration_[wi] = -comm.min(-penetration_[wi]);
+    const double deepest = -comm.min(-penetration_per_size_[wi]);
+    const std::int64_t mine = penetration_per_size_[wi] == deepest && deepest_body_[wi] >= 0
+                                  ? deepest_body_[wi]
+                                  : INT64_MAX;
+    const std::int64_t body = comm.min(mine);
+    penetration_per_size_[wi] = deepest;
+    deepest_body_[wi] = body == INT64_MAX ? -1 : static_cast<int>(body);
   }
 }
 
@@ -191,8 +240,8 @@ double WallContact::stable_step(const Model& m, double dt_element, double dt) {
   // element's plus the spring's (omega^2 <= omega_e^2 + k/m).
   const double omega_el = 2.0 / dt_element;
   const double margin = m.settings.contact_stiffness_margin();
-  std::fill(stiffness_.begin(), stiffness_.end(), 0.0);
   std::visit([&]<class Law>(const Law&) { refresh_near<Law>(m); }, law_);
+  std::vector<ExactSum> stiffness(m.walls.size());
   for (const NearPair& e : near_) {
     const SurfaceNode& s = m.surface[e.surface];
     const Vec3 p(m.x[3 * s.node], m.x[3 * s.node + 1], m.x[3 * s.node + 2]);
@@ -200,7 +249,7 @@ double WallContact::stable_step(const Model& m, double dt_element, double dt) {
       const std::size_t wi = e.wall;
       const double k = margin * near_wall_stiffness(m, s, p, m.walls[wi]);
       if (!(k > 0.0)) continue;
-      stiffness_[wi] += k;
+      stiffness[wi].add(k);
       // a damping ratio xi shrinks the stable step by sqrt(1 + xi^2) - xi
       const double xi = m.walls[wi].damping;
       const double shrink = std::sqrt(1.0 + xi * xi) - xi;
@@ -208,6 +257,10 @@ double WallContact::stable_step(const Model& m, double dt_element, double dt) {
       dt = std::min(dt, 2.0 * shrink / std::sqrt(omega_el * omega_el + k / m.mass[s.node]));
     }
   }
+  reduce(stiffness);
+  for (std::size_t wi = 0; wi < stiffness_.size(); ++wi) stiffness_[wi] = stiffness[wi].value();
+  dt = reduce_min(dt);
+  damping_factor_ = reduce_min(damping_factor_);
   // A force-driven wall is a mass on the contact springs of every node near it (in parallel):
   // its own frequency must be resolved too. (The nodes' bound above counts each spring on its
   // node's side.)
@@ -240,10 +293,26 @@ void WallContact::append_springs(const Model& m, std::vector<ContactSpring>& out
 void WallContact::exchange_state(StateArchive& a) {
   using L = StateArchive::Length;
   const StateArchive::Scope scope(a, "wall_contact");
-  a.array("near", near_, L::variable);
+  // the list by global boundary-node index: key = node entry x walls + wall
+  const std::uint64_t nw = wall_offset_at_build_.size();
+  std::vector<std::uint64_t> key;
+  std::vector<double> k;
+  std::vector<std::uint32_t> reach_surface;
+  std::vector<Vec3> reference;
+  if (a.saving()) {
+    for (const NearPair& e : near_) {
+      key.push_back(global_surface(e.surface) * nw + e.wall);
+      k.push_back(e.k);
+    }
+    reference = moved_.recorded_positions();
+    if (!reference.empty())
+      for (const std::uint32_t si : tracked_) reach_surface.push_back(global_surface(si));
+  }
+  a.array("near_key", key, L::variable);
+  a.array("near_k", k, L::variable);
   a.array("stick", stick_, L::variable);
   a.array("wall_offset_at_build", wall_offset_at_build_);
-  std::vector<Vec3> reference = moved_.recorded_positions();
+  a.array("reach_surface", reach_surface, L::variable);
   a.array("reach_reference", reference, L::variable);
   a.value("released", released_);
   a.value("near_builds", near_builds_);
@@ -252,7 +321,34 @@ void WallContact::exchange_state(StateArchive& a) {
   a.array("penetration_per_size", penetration_per_size_);
   a.value("damping_factor", damping_factor_);
   a.value("driven_wall_step", driven_wall_step_);
-  if (!a.saving() && !reference.empty()) moved_.record(reference);
+  if (a.saving()) return;
+  // keep the entries of the boundary nodes tracked here (all of them in one process)
+  std::vector<std::int64_t> local_of;  // global boundary-node index -> tracked entry here
+  for (const std::uint32_t si : tracked_) {
+    const std::uint32_t g = global_surface(si);
+    if (local_of.size() <= g) local_of.resize(g + 1, -1);
+    local_of[g] = si;
+  }
+  auto local = [&](std::uint64_t g) { return g < local_of.size() ? local_of[g] : -1; };
+  const std::vector<double> stick = std::move(stick_);
+  near_.clear();
+  stick_.clear();
+  for (std::size_t i = 0; i < key.size(); ++i) {
+    const std::int64_t si = local(key[i] / nw);
+    if (si < 0) continue;
+    near_.push_back(
+        {static_cast<std::uint32_t>(si), static_cast<std::uint32_t>(key[i] % nw), k[i]});
+    if (!stick.empty())
+      stick_.insert(stick_.end(), stick.begin() + 3 * i, stick.begin() + 3 * i + 3);
+  }
+  if (reference.size() != reach_surface.size())
+    throw CheckpointError("'wall_contact/reach_reference' and 'reach_surface' differ in length");
+  if (!reference.empty()) {
+    std::vector<Vec3> mine;
+    for (std::size_t i = 0; i < reference.size(); ++i)
+      if (local(reach_surface[i]) >= 0) mine.push_back(reference[i]);
+    moved_.record(mine);
+  }
 }
 
 }  // namespace femdem

@@ -11,8 +11,14 @@
 // its element depth plus a buffer of the wall's plane when the list was built, kept until the
 // nodes' largest displacement plus the walls' largest travel along their normals exceeds the
 // buffer (then a pair off the list may have come within an element depth). The list is sorted
-// by node, then wall, so the sums run in the same order as over all pairs and give the same
-// bits.
+// by node, then wall. The walls' forces, the energies and the stiffness near each wall are
+// exact sums (engine/exact_sum.hpp), so they have the same bits in any order.
+//
+// In a distributed run (docs/ARCHITECTURE.md, "Distributed runs") each rank takes the boundary
+// nodes it owns; the sums and the deepest nodes are added and compared over the ranks, and the
+// list is rebuilt on every rank when it must be on any, so it is the one process's list cut by
+// owner. A checkpoint keeps the list by global boundary-node index (near_key), so that one of
+// any number of ranks is the same.
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -20,13 +26,15 @@
 #include "contact/contact_laws.hpp"
 #include "contact/verlet_buffer.hpp"
 #include "engine/contact_model.hpp"
+#include "engine/distributed/distribution.hpp"
+#include "engine/exact_sum.hpp"
 #include "engine/state_archive.hpp"
 
 namespace femdem {
 
 class WallContact final : public ContactModel {
  public:
-  WallContact(const Model& m, bool collect_patches);
+  WallContact(const Model& m, bool collect_patches, const Distribution* dist = nullptr);
 
   bool active() const override { return active_; }
   void compute(Model& m, double step_dt, std::vector<double>& f, ContactSums& sums) override;
@@ -52,6 +60,8 @@ class WallContact final : public ContactModel {
   double driven_wall_step() const { return driven_wall_step_; }
   // Saves or loads (engine/state_archive.hpp) the reach list with its friction springs, what it
   // was built from, the unbooked releases and the per-wall stiffness, depth and step figures.
+  // The list and the recorded positions are keyed by global boundary-node index; loading keeps
+  // the entries of the nodes this rank owns.
   void exchange_state(StateArchive& a);
 
  private:
@@ -66,7 +76,20 @@ class WallContact final : public ContactModel {
   template <class Law>
   void refresh_near(const Model& m);
   void build_near(const Model& m);
+  // The global index of local boundary-node entry `si` (itself in one process).
+  std::uint32_t global_surface(std::size_t si) const {
+    return dist_ ? static_cast<std::uint32_t>(dist_->part.surface[si])
+                 : static_cast<std::uint32_t>(si);
+  }
+  // Distributed: the sums and extremes of the ranks (no-ops in one process).
+  void reduce(std::span<ExactSum> sums) const {
+    if (dist_) dist_->comm->sum(sums);
+  }
+  double reduce_min(double x) const { return dist_ ? dist_->comm->min(x) : x; }
+  bool any_rank(bool flag) const { return dist_ ? !dist_->comm->all(!flag) : flag; }
+  void reduce_deepest();
 
+  const Distribution* dist_ = nullptr;
   WallLaw law_;
   bool active_ = false;
   bool collect_patches_ = false;
@@ -79,7 +102,10 @@ class WallContact final : public ContactModel {
   std::vector<double> wall_offset_at_build_;  // point . normal per wall
   VerletBuffer moved_;                        // node positions at the last build
   double reach_buffer_ = 0.0;
-  double released_ = 0.0;  // friction energy released by a rebuild, not yet booked
+  // friction energy released by a rebuild, not yet booked (this rank's; a checkpoint of several
+  // ranks holds their total)
+  double released_ = 0.0;
+  std::vector<ExactSum> force_sums_;  // per wall, 3 components: this step's force
   std::int64_t near_builds_ = 0;
   std::vector<ContactPatch> patches_;  // per (body, wall), body-major
   std::vector<double> stiffness_;      // per wall: the contact stiffness near it

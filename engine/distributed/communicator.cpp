@@ -6,6 +6,7 @@
 #define MPICH_SKIP_MPICXX 1
 #include <mpi.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <vector>
 
@@ -42,7 +43,7 @@ bool Communicator::launched_by_mpi() {
 
 Communicator& Communicator::world() {
   static Communicator w = [] {
-    if (!launched_by_mpi()) return Communicator(0, 1);
+    if (!launched_by_mpi()) return Communicator(0, 1, 1);
     int provided = 0;
     // OpenMP threads inside each rank; only the main thread talks to the other ranks
     MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
@@ -50,7 +51,12 @@ Communicator& Communicator::world() {
     int rank = 0, size = 1;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &size);
-    return Communicator(rank, size);
+    MPI_Comm here;
+    MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, rank, MPI_INFO_NULL, &here);
+    int size_here = 1;
+    MPI_Comm_size(here, &size_here);
+    MPI_Comm_free(&here);
+    return Communicator(rank, size, size_here);
   }();
   return w;
 }
@@ -125,6 +131,57 @@ void Communicator::exchange(const LocalPart& part, double* values, int width) co
       for (int c = 0; c < width; ++c)
         values[static_cast<std::size_t>(n.receive[i]) * width + c] = recv[k][i * width + c];
   }
+}
+
+namespace {
+
+// Messages of any size, in pieces MPI's int counts can name.
+constexpr std::size_t kPiece = std::size_t{1} << 30;
+constexpr int kBytesTag = 24;
+
+void send_bytes(std::span<const std::byte> b, int to) {
+  std::uint64_t n = b.size();
+  MPI_Send(&n, 1, MPI_UINT64_T, to, kBytesTag, MPI_COMM_WORLD);
+  for (std::size_t at = 0; at < b.size(); at += kPiece)
+    MPI_Send(b.data() + at, static_cast<int>(std::min(kPiece, b.size() - at)), MPI_BYTE, to,
+             kBytesTag, MPI_COMM_WORLD);
+}
+
+std::vector<std::byte> receive_bytes(int from) {
+  std::uint64_t n = 0;
+  MPI_Recv(&n, 1, MPI_UINT64_T, from, kBytesTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  std::vector<std::byte> b(n);
+  for (std::size_t at = 0; at < b.size(); at += kPiece)
+    MPI_Recv(b.data() + at, static_cast<int>(std::min(kPiece, b.size() - at)), MPI_BYTE, from,
+             kBytesTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  return b;
+}
+
+}  // namespace
+
+std::vector<std::vector<std::byte>> Communicator::gather(std::span<const std::byte> mine) const {
+  std::vector<std::vector<std::byte>> all;
+  if (rank_ != 0) {
+    send_bytes(mine, 0);
+    return all;
+  }
+  all.emplace_back(mine.begin(), mine.end());
+  for (int r = 1; r < size_; ++r) all.push_back(receive_bytes(r));
+  return all;
+}
+
+void Communicator::broadcast(std::vector<std::byte>& bytes) const {
+  if (size_ == 1) return;
+  std::uint64_t n = bytes.size();
+  MPI_Bcast(&n, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+  bytes.resize(n);
+  for (std::size_t at = 0; at < bytes.size(); at += kPiece)
+    MPI_Bcast(bytes.data() + at, static_cast<int>(std::min(kPiece, bytes.size() - at)), MPI_BYTE, 0,
+              MPI_COMM_WORLD);
+}
+
+void Communicator::broadcast(void* data, std::size_t bytes) const {
+  if (size_ > 1) MPI_Bcast(data, static_cast<int>(bytes), MPI_BYTE, 0, MPI_COMM_WORLD);
 }
 
 void Communicator::abort(int code) const {

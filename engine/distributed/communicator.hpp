@@ -5,9 +5,11 @@
 // values from their owners. MPI (Open MPI) is behind this interface: only communicator.cpp
 // includes mpi.h. MPI is started only when the program was launched by mpirun (or a batch
 // system's launcher), so a plain `femdem run` never touches it and runs as one rank.
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "engine/distributed/local_part.hpp"
 #include "engine/exact_sum.hpp"
@@ -24,6 +26,8 @@ class Communicator {
 
   int rank() const { return rank_; }
   int size() const { return size_; }
+  // How many of the ranks run on this machine (they share its cores).
+  int size_here() const { return size_here_; }
 
   // Every rank gets the totals of the ranks' accumulators (their limbs added as integers: exact).
   void sum(std::span<ExactSum> sums) const;
@@ -33,12 +37,19 @@ class Communicator {
   // The ghost nodes' values from their owners: `width` doubles per node of `part`, in local
   // numbering; each rank sends its owned nodes that others hold and receives its ghosts.
   void exchange(const LocalPart& part, double* values, int width) const;
+  // Rank 0 gets every rank's bytes, in rank order (its own first); the others get nothing.
+  std::vector<std::vector<std::byte>> gather(std::span<const std::byte> mine) const;
+  // Every rank gets rank 0's bytes (any size).
+  void broadcast(std::vector<std::byte>& bytes) const;
+  // Every rank gets rank 0's `bytes` bytes at `data` (a fixed-size message: a command).
+  void broadcast(void* data, std::size_t bytes) const;
   // Stops every rank with `code` (what a failing rank calls, so that none waits for it forever).
   [[noreturn]] void abort(int code) const;
 
  private:
-  Communicator(int rank, int size) : rank_(rank), size_(size) {}
-  int rank_ = 0, size_ = 1;
+  Communicator(int rank, int size, int size_here)
+      : rank_(rank), size_(size), size_here_(size_here) {}
+  int rank_ = 0, size_ = 1, size_here_ = 1;
 };
 
 }  // namespace femdem

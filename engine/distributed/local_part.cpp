@@ -77,7 +77,16 @@ LocalPart local_part(const Model& m, const Partition& p, int rank, int layers) {
     if (!nb.receive.empty() || !nb.send.empty()) part.neighbours.push_back(std::move(nb));
   }
   for (const Body& b : m.bodies) part.body_first_element.push_back(b.first_element);
+  for (std::size_t si = 0; si < m.surface.size(); ++si)
+    if (local[m.surface[si].node] >= 0) part.surface.push_back(static_cast<std::int32_t>(si));
   part.global_node_count = m.node_count;
+  part.global_element_count = m.element_count;
+  for (const Body& b : m.bodies) {
+    std::int32_t r = b.element_count > 0 ? p.element_rank[b.first_element] : -1;
+    for (std::int32_t e = b.first_element; e < b.first_element + b.element_count; ++e)
+      if (p.element_rank[e] != r) r = -1;
+    part.body_rank.push_back(r);
+  }
   return part;
 }
 
@@ -142,8 +151,10 @@ Model local_model(const Model& m, const LocalPart& part) {
     for (std::int32_t n : g.surface_nodes)
       if (local[n] >= 0) body.surface_nodes.push_back(local[n]);
   }
-  for (const SurfaceNode& s : m.surface)
-    if (local[s.node] >= 0) l.surface.push_back({local[s.node], s.body, s.area, s.depth});
+  for (const std::int32_t si : part.surface) {
+    const SurfaceNode& s = m.surface[si];
+    l.surface.push_back({local[s.node], s.body, s.area, s.depth});
+  }
   for (std::size_t t = 0; t < m.contact_tets.size(); ++t) {
     std::array<std::int32_t, 4> lt;
     bool all = true;

@@ -35,6 +35,11 @@ struct LocalPart {
   // the first global element of each body (to name an element in messages on every rank)
   std::vector<std::int32_t> body_first_element;
   std::int32_t global_node_count = 0;
+  std::int32_t global_element_count = 0;
+  // the global index (into Model::surface) of each local surface node entry, ascending
+  std::vector<std::int32_t> surface;
+  // per body: the rank that holds all of it, or -1 for a body cut among ranks
+  std::vector<std::int32_t> body_rank;
 };
 
 // How deep the held elements must reach around the owned nodes: 1, or 3 if any element uses

@@ -20,7 +20,8 @@ namespace femdem {
 
 // The layout version of checkpoint.h5: raised whenever what a part saves changes, so that a
 // checkpoint of another layout is refused by name rather than loaded wrongly.
-inline constexpr int kCheckpointFormat = 1;
+// 2: the walls' reach list keyed by global boundary-node index (near_key, reach_surface).
+inline constexpr int kCheckpointFormat = 2;
 
 struct CheckpointInfo {
   int format = kCheckpointFormat;

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/distributed/communicator.hpp"
 #include "engine/errors.hpp"
 #include "femdem_version.hpp"
 #include "tools/femdem/check_command.hpp"
@@ -338,17 +339,30 @@ int main(int argc, char** argv) {
     return code == 0 ? kExitOk : kExitBadInput;
   }
 
+  // Under mpirun every rank runs this; rank 0 reports what all ranks find alike (bad input, a
+  // diverging run), the others stay quiet then. A failure of one rank alone stops them all.
+  const femdem::Communicator& world = femdem::Communicator::world();
+  const bool reports = world.rank() == 0;
   try {
+    if (world.size() > 1 && !commands[0].app->parsed() && !commands[1].app->parsed())
+      throw femdem::InputError("femdem " + app.get_subcommands().front()->get_name() +
+                               " runs as one process: only run and resume take several ranks "
+                               "(mpirun -np N femdem run SCENE)");
     for (const Command& c : commands)
       if (c.app->parsed()) return c.action();
   } catch (const femdem::InputError& e) {
-    std::fprintf(stderr, "error: %s\n", e.describe().c_str());
+    if (reports) std::fprintf(stderr, "error: %s\n", e.describe().c_str());
     return kExitBadInput;
   } catch (const femdem::InstabilityError& e) {
-    std::fprintf(stderr, "error: the simulation became unstable: %s\n", e.what());
+    if (reports) std::fprintf(stderr, "error: the simulation became unstable: %s\n", e.what());
     return kExitUnstable;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
+    if (world.size() == 1) {
+      std::fprintf(stderr, "error: %s\n", e.what());
+      return kExitFailure;
+    }
+    std::fprintf(stderr, "error (rank %d of %d): %s\n", world.rank(), world.size(), e.what());
+    if (!reports) world.abort(kExitFailure);  // (rank 0 has stopped the others already)
     return kExitFailure;
   }
   return kExitFailure;

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "engine/compaction.hpp"
+#include "engine/distributed/communicator.hpp"
 #include "engine/errors.hpp"
 #include "engine/initial_overlap.hpp"
 #include "engine/output_fields.hpp"
@@ -36,6 +37,7 @@
 #include "tools/femdem/run/peak_monitor.hpp"
 #include "tools/femdem/run/plot_script.hpp"
 #include "tools/femdem/run/progress_line.hpp"
+#include "tools/femdem/run/rank_group.hpp"
 #include "tools/femdem/run/rest_monitor.hpp"
 #include "tools/femdem/run/restitution_monitor.hpp"
 #include "tools/femdem/run/run_checkpoint.hpp"
@@ -86,7 +88,8 @@ void write_log_header(RunLog& log, const SceneFile& scene, const RunOptions& opt
   log.file_only(head.str());
 }
 
-void say_model(RunLog& log, const SceneFile& scene, const Simulation& sim, int threads) {
+void say_model(RunLog& log, const SceneFile& scene, const Simulation& sim, int threads,
+               const RankGroup* ranks) {
   const Model& m = sim.model();
   const SimulationSettings& set = m.settings;
   log.say("femdem " + std::string(FEMDEM_VERSION) + ": " +
@@ -96,7 +99,19 @@ void say_model(RunLog& log, const SceneFile& scene, const Simulation& sim, int t
   std::snprintf(buf, sizeof buf, "%d bodies, %d nodes, %d TET10 elements, %d walls; %d thread%s",
                 static_cast<int>(m.bodies.size()), m.node_count, m.element_count,
                 static_cast<int>(m.walls.size()), threads, threads == 1 ? "" : "s");
-  log.say(buf);
+  if (!ranks) {
+    log.say(buf);
+  } else {
+    log.say(std::string(buf) + " in each of " + std::to_string(ranks->ranks()) + " ranks (MPI)");
+    // what the ranks exchange every step: the ghost nodes' positions and velocities
+    std::int64_t sent = 0, most = 0;
+    for (const std::int64_t n : ranks->ghosts_sent()) sent += n, most = std::max(most, n);
+    std::snprintf(buf, sizeof buf,
+                  "ghost nodes sent a step: %lld in all (%.4g kB), at most %lld by one rank",
+                  static_cast<long long>(sent), 48e-3 * static_cast<double>(sent),
+                  static_cast<long long>(most));
+    log.say(buf);
+  }
   // which element kernel: what a user needs to read the run's element-update rate
   const std::int64_t simd = sim.element_pass().simd_elements();
   std::snprintf(
@@ -236,14 +251,28 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
             const ResumePoint* resume) {
   const auto wall_start = Clock::now();
   ModelSpec spec = scene.model;
-  const int threads = use_threads(options.threads, spec.simulation.threads);
+  const int threads =
+      use_threads(options.threads, spec.simulation.threads, Communicator::world().size_here());
   SimulationSettings& set = spec.simulation;
   if (set.output_interval <= 0.0) set.output_interval = set.end_time / 50.0;
   if (set.history_interval <= 0.0) set.history_interval = set.output_interval / 20.0;
 
   // Everything that can fail on bad input happens before the first file is written.
   check_memory(spec);
-  Simulation sim(build_model(spec));
+  Model whole_model = build_model(spec);
+  // On several ranks (mpirun), every rank steps a part; rank 0 goes on below with the whole
+  // model's Simulation as the view that is written, the others follow its commands.
+  std::optional<RankGroup> ranks;
+  if (const Communicator& world = Communicator::world(); world.size() > 1) {
+    ranks.emplace(whole_model, world);
+    if (world.rank() != 0) {
+      whole_model = Model{};      // (only rank 0 keeps the whole model)
+      const StopSignals signals;  // (rank 0 decides when to stop)
+      ranks->follow();
+      return 0;
+    }
+  }
+  Simulation sim(std::move(whole_model));
   if (!resume) check_initial_overlap(sim);  // (a resumed run passed it when it started)
   const Model& m = sim.model();
   const std::filesystem::path out = options.out_dir;
@@ -303,6 +332,7 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
     try {
       const auto t0 = Clock::now();
       read_checkpoint(checkpoint_path, exchange_run);
+      if (ranks) ranks->scatter(sim);
       read_time_s = seconds_since(t0);
     } catch (const CheckpointError& e) {
       throw InputError(e.what(), checkpoint_path.string());
@@ -336,7 +366,7 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
     std::filesystem::remove(checkpoint_path);
     log_file.emplace(out / "run.log", options.quiet);
     write_log_header(*log_file, scene, options);
-    say_model(*log_file, scene, sim, threads);
+    say_model(*log_file, scene, sim, threads, ranks ? &*ranks : nullptr);
     results.emplace(out, mesh,
                     ResultsOptions{.scene_digest = digest,
                                    .expected_frames = 1 + schedule.frames_after(sim.time()),
@@ -359,7 +389,7 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
     std::filesystem::remove(out / "summary.json");
     log_file.emplace(out / "run.log", options.quiet, /*append=*/true);
     say_resumed(*log_file, options, *resume, read_time_s);
-    say_model(*log_file, scene, sim, threads);
+    say_model(*log_file, scene, sim, threads, ranks ? &*ranks : nullptr);
   }
   RunLog& log = *log_file;
 
@@ -376,6 +406,7 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
   auto write_frame = [&] {
     // the rows up to this frame reach the file first: a killed run loses no row a frame has
     history->flush();
+    if (ranks) ranks->gather(sim, GatheredState::outputs);
     for (std::size_t i = 0; i < disp.size(); ++i) disp[i] = m.x[i] - m.X[i];
     sim.element_stress(s6, vm, pr, ep);
     for (std::size_t w = 0; w < m.walls.size(); ++w)
@@ -400,6 +431,7 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
   };
   HistorySample sample;
   auto write_history = [&] {
+    if (ranks) ranks->gather(sim, GatheredState::outputs);
     take_sample(sim, sample);
     if (compaction) {
       const auto t0 = Clock::now();
@@ -416,7 +448,10 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
   };
   std::vector<BodyState> motions;
   auto observe_step = [&] {
-    sim.body_motions(motions);
+    if (ranks)
+      ranks->body_motions(motions);
+    else
+      sim.body_motions(motions);
     for (std::size_t b = 0; b < m.bodies.size(); ++b) restitution[b].observe(motions[b]);
   };
 
@@ -429,6 +464,7 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
   auto write_checkpoint_now = [&] {
     const auto t0 = Clock::now();
     history->flush();
+    if (ranks) ranks->gather(sim, GatheredState::everything);
     counts = {history->bytes_written(), history->rows(), results->frame_count()};
     const CheckpointInfo info{kCheckpointFormat, version_text(), digest, sim.time(), sim.steps()};
     write_checkpoint(checkpoint_path, info, exchange_run);
@@ -473,7 +509,10 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
         write_checkpoint_now();
         before_last_steps = true;
       }
-      sim.step(limit);
+      if (ranks)
+        ranks->step(limit, sim);
+      else
+        sim.step(limit);
       observe_step();
       if (schedule.history_due(sim.time())) write_history();
       if (schedule.frame_due(sim.time()) || rest.at_rest()) write_frame();
@@ -494,6 +533,7 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
     throw;
   }
   progress.clear();
+  if (ranks) ranks->stop();
   history->close();
   if (checkpoints > 0) {
     char buf[200];

@@ -1,0 +1,38 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// Moving a distributed run's state between its ranks and one whole-model Simulation on rank 0
+// (docs/ARCHITECTURE.md, "Distributed runs"): rank 0 writes the outputs and checkpoints of the
+// whole model from that Simulation, in the layout of a one-process run, and a checkpoint (from
+// any number of ranks) is handed to the ranks from it. The state is what
+// Simulation::exchange_state archives: arrays with a row per node (positions, velocities, ...),
+// a row per element (Gauss-point states, stresses, ...), or the same on every rank (time, step,
+// energy accounts, walls). A row comes from the rank that owns its node or element.
+#include <string>
+
+#include "engine/distributed/distribution.hpp"
+#include "engine/distributed/partition.hpp"
+#include "engine/simulation.hpp"
+
+namespace femdem {
+
+// What rank 0's Simulation is brought up to date with.
+enum class GatheredState {
+  // What the outputs read: positions, velocities, masses, contact forces, Gauss-point states
+  // and stresses (a frame, a history row), and everything the ranks have alike.
+  outputs,
+  // All of it (a checkpoint).
+  everything,
+};
+
+// Every rank calls it; `whole` (the whole model, on rank 0; null elsewhere) then holds the
+// state of `local` (each rank's part, of `dist`, cut by `p`). Throws std::logic_error for a
+// state array whose layout this file does not know (a new array must be listed here).
+void gather_state(Simulation& local, const Distribution& dist, const Partition& p,
+                  Simulation* whole, GatheredState what = GatheredState::everything);
+
+// Every rank calls it; `local` then holds its part of `whole` (rank 0's; null elsewhere), e.g.
+// after rank 0 read a checkpoint. Throws CheckpointError for a state this many ranks cannot
+// take yet (contact pairs and wall springs: see docs/ARCHITECTURE.md).
+void scatter_state(Simulation* whole, Simulation& local, const Distribution& dist);
+
+}  // namespace femdem

@@ -1,0 +1,305 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// `mpirun -np N femdem run SCENE` (docs/ARCHITECTURE.md, "Distributed runs"): a run on 2 and 3
+// ranks writes what one process writes, to the bit (summary.json but for the machine's
+// timings, history.csv byte for byte, every frame of results.h5, the XDMF files); a run
+// started on 2 ranks resumes on 1 and one started in one process resumes on 3, each equal to
+// the run made straight through; and what ranks cannot do yet is refused alike.
+//
+// The scenes are one body cut among the ranks (contact between bodies across ranks is not
+// built yet): an elastic bar vibrating along its length on rollers with a fixed end (as
+// scenes/bar_vibration.toml); a von Mises bar with nodal F-bar (three ghost layers) moving at
+// 11 m/s with one end held, yielded by the wave from the held end (rho c v = 150 MPa against
+// a yield stress of 30 MPa); a coarse Taylor bar on its anvil; a Drucker-Prager block pressed
+// in a die with friction by a force-driven punch.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "support/run_command.hpp"
+#include "support/run_outputs.hpp"
+
+namespace femdem::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* const kElasticBar = R"(title = "distributed: elastic bar vibration"
+[simulation]
+end_time = 6.0
+output_interval = 0.5
+history_interval = 0.1
+checkpoint_interval = 1.0
+
+[[materials]]
+name = "bar"
+model = "elastic"
+density = 1.0
+youngs_modulus = 100.0
+poisson_ratio = 0.0
+
+[[bodies]]
+name = "bar"
+material = "bar"
+mesh = { generator = "box", size = [10.0, 1.0, 1.0], element_size = 0.5 }
+velocity = [1e-4, 0.0, 0.0]
+
+[[constraints]]
+body = "bar"
+region = "all"
+fix = ["y", "z"]
+
+[[constraints]]
+body = "bar"
+region = { plane_point = [0.0, 0.0, 0.0], plane_normal = [1.0, 0.0, 0.0] }
+fix = ["x"]
+)";
+
+const char* const kPlasticBar = R"(title = "distributed: yielding bar, nodal F-bar"
+[simulation]
+end_time = 2e-4
+output_interval = 2e-5
+history_interval = 5e-6
+gravity = [0.0, 0.0, -9.81]
+stable_step = "assembled"
+
+[[materials]]
+name = "metal"
+model = "von_mises"
+density = 2700.0
+youngs_modulus = 70e9
+poisson_ratio = 0.3
+yield_stress = 30e6
+hardening_modulus = 300e6
+
+[[bodies]]
+name = "bar"
+material = "metal"
+fbar = "nodal"
+mesh = { generator = "box", size = [0.06, 0.01, 0.01], element_size = 0.005 }
+velocity = [10.0, 0.0, 5.0]
+
+[[constraints]]
+body = "bar"
+region = { plane_point = [0.0, 0.0, 0.0], plane_normal = [1.0, 0.0, 0.0] }
+fix = ["x", "y", "z"]
+)";
+
+// The Taylor bar (scenes/taylor_bar.toml) coarse: a copper rod at 227 m/s on a rigid wall.
+const char* const kTaylorBar = R"(title = "distributed: coarse Taylor bar"
+[simulation]
+end_time = 16e-6
+output_interval = 2e-6
+history_interval = 4e-7
+checkpoint_interval = 4e-6
+
+[[materials]]
+name = "copper"
+model = "von_mises"
+density = 8930.0
+youngs_modulus = 117e9
+poisson_ratio = 0.35
+yield_stress = 400e6
+hardening_modulus = 100e6
+
+[[bodies]]
+name = "rod"
+material = "copper"
+mesh = { generator = "cylinder", radius = 3.2e-3, length = 32.4e-3, element_size = 1.6e-3 }
+velocity = [0.0, 0.0, -227.0]
+
+[[walls]]
+name = "anvil"
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 1.0]
+)";
+
+// A Drucker-Prager block pressed in a die with friction by a force-driven punch: the walls'
+// forces (reduced over the ranks), friction springs carried across the ranks' near lists,
+// the punch's own motion from those forces.
+const char* const kDiePress = R"(title = "distributed: block pressed in a die"
+[simulation]
+end_time = 1.2e-4
+output_interval = 2e-5
+history_interval = 2e-6
+gravity = [0.0, 0.0, -9.81]
+
+[[materials]]
+name = "powder"
+model = "drucker_prager"
+density = 2500.0
+youngs_modulus = 3e9
+poisson_ratio = 0.25
+cohesion = 2e6
+friction_angle = 30.0
+dilatancy_angle = 5.0
+
+[[bodies]]
+name = "block"
+material = "powder"
+mesh = { generator = "box", size = [8e-3, 8e-3, 10e-3], element_size = 2e-3 }
+position = [-4e-3, -4e-3, 0.0]
+
+[[walls]]
+name = "bottom"
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 1.0]
+friction = 0.2
+
+[[walls]]
+name = "punch"
+point = [0.0, 0.0, 10.05e-3]
+normal = [0.0, 0.0, -1.0]
+force_history = [[0.0, 0.0], [6e-5, 2e4], [1.2e-4, 2e4]]
+mass = 0.05
+velocity = [0.0, 0.0, -5.0]
+
+[[walls]]
+name = "left"
+point = [-4e-3, 0.0, 0.0]
+normal = [1.0, 0.0, 0.0]
+friction = 0.2
+[[walls]]
+name = "right"
+point = [4e-3, 0.0, 0.0]
+normal = [-1.0, 0.0, 0.0]
+friction = 0.2
+[[walls]]
+name = "front"
+point = [0.0, -4e-3, 0.0]
+normal = [0.0, 1.0, 0.0]
+friction = 0.2
+[[walls]]
+name = "back"
+point = [0.0, 4e-3, 0.0]
+normal = [0.0, -1.0, 0.0]
+friction = 0.2
+)";
+
+struct SceneCase {
+  const char* text;
+  const char* half_time;  // where the resume tests stop the first run
+  const char* end_time;
+};
+
+SceneCase scene_case(const std::string& name) {
+  if (name == "elastic_bar") return {kElasticBar, "3.0", "6.0"};
+  if (name == "plastic_bar") return {kPlasticBar, "1e-4", "2e-4"};
+  if (name == "taylor_bar") return {kTaylorBar, "8e-6", "16e-6"};
+  return {kDiePress, "6e-5", "1.2e-4"};
+}
+
+fs::path tmp_dir() {
+  return fs::path(FEMDEM_TEST_TMP) / "distributed_run";
+}
+
+fs::path write_scene(const std::string& name, const char* text) {
+  fs::create_directories(tmp_dir());
+  const fs::path p = tmp_dir() / (name + ".toml");
+  std::ofstream(p) << text;
+  return p;
+}
+
+// `femdem ARGS` in one process (ranks 1) or under mpirun.
+CommandResult femdem(int ranks, const std::string& args) {
+  std::string exe = std::string("'") + FEMDEM_EXE + "' ";
+  if (ranks > 1)
+    exe = std::string("'") + FEMDEM_MPIEXEC + "' -np " + std::to_string(ranks) +
+          " --oversubscribe --allow-run-as-root -x OMP_NUM_THREADS=1 " + exe;
+  return run_command(exe + args);
+}
+
+CommandResult run(int ranks, const fs::path& scene, const fs::path& out,
+                  const std::string& options = "") {
+  fs::remove_all(out);
+  return femdem(ranks, "run '" + scene.string() + "' --quiet --threads 1 --out '" + out.string() +
+                           "' " + options);
+}
+
+class DistributedRun : public ::testing::TestWithParam<std::string> {
+ protected:
+  const char* scene_text() const { return scene_case(GetParam()).text; }
+};
+
+TEST_P(DistributedRun, TwoAndThreeRanksWriteWhatOneProcessWrites) {
+  const fs::path scene = write_scene(GetParam(), scene_text());
+  const fs::path one = tmp_dir() / (GetParam() + "_1");
+  const CommandResult c1 = run(1, scene, one);
+  ASSERT_EQ(c1.code, 0) << c1.output;
+  for (int ranks : {2, 3}) {
+    SCOPED_TRACE(std::to_string(ranks) + " ranks");
+    const fs::path out = tmp_dir() / (GetParam() + "_" + std::to_string(ranks));
+    const CommandResult c = run(ranks, scene, out);
+    ASSERT_EQ(c.code, 0) << c.output;
+    expect_same_run(one, out);
+    EXPECT_NE(read_text(out / "run.log").find("in each of " + std::to_string(ranks) + " ranks"),
+              std::string::npos);
+  }
+}
+
+TEST_P(DistributedRun, ResumesOnAnotherNumberOfRanks) {
+  const fs::path scene = write_scene(GetParam() + "_resume", scene_text());
+  const SceneCase sc = scene_case(GetParam());
+  const std::string half = sc.half_time;
+  const fs::path straight = tmp_dir() / (GetParam() + "_straight");
+  ASSERT_EQ(run(1, scene, straight).code, 0);
+  // started on 2 ranks, finished in one process; started in one, finished on 3
+  for (const auto& [first, second] : {std::pair{2, 1}, std::pair{1, 3}}) {
+    SCOPED_TRACE(std::to_string(first) + " then " + std::to_string(second) + " ranks");
+    const fs::path out = tmp_dir() / (GetParam() + "_resumed_" + std::to_string(first) + "_" +
+                                      std::to_string(second));
+    const CommandResult a = run(first, scene, out, "--set simulation.end_time=" + half);
+    ASSERT_EQ(a.code, 0) << a.output;
+    const CommandResult b = femdem(
+        second, "resume '" + out.string() + "' --quiet --set simulation.end_time=" + sc.end_time);
+    ASSERT_EQ(b.code, 0) << b.output;
+    // (the resumed run's summary has the end time it was extended to, as the straight run's)
+    expect_same_run(straight, out);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Bars, DistributedRun, ::testing::Values("elastic_bar", "plastic_bar"));
+INSTANTIATE_TEST_SUITE_P(Walls, DistributedRun, ::testing::Values("taylor_bar", "die_press"));
+
+TEST(DistributedRunRefusal, WhatRanksCannotDoYetExitsTwoFromEveryRankWithOneMessage) {
+  const fs::path scene = write_scene("two_bodies", R"(title = "two bodies"
+[simulation]
+end_time = 1e-5
+
+[[materials]]
+name = "metal"
+model = "elastic"
+density = 2700.0
+youngs_modulus = 70e9
+poisson_ratio = 0.3
+
+[[bodies]]
+name = "a"
+material = "metal"
+mesh = { generator = "box", size = [0.01, 0.01, 0.01], element_size = 0.005 }
+
+[[bodies]]
+name = "b"
+material = "metal"
+mesh = { generator = "box", size = [0.01, 0.01, 0.01], element_size = 0.005 }
+position = [0.0, 0.0, 0.02]
+)");
+  const fs::path out = tmp_dir() / "two_bodies";
+  const CommandResult c = run(2, scene, out);
+  EXPECT_EQ(c.code, 2) << c.output;
+  // one message, from rank 0, naming what is missing
+  const std::string needle = "more than one body";
+  const auto first = c.output.find(needle);
+  ASSERT_NE(first, std::string::npos) << c.output;
+  EXPECT_EQ(c.output.find(needle, first + 1), std::string::npos) << c.output;
+  EXPECT_FALSE(fs::exists(out / "results.h5"));
+  // commands other than run and resume run as one process
+  const CommandResult check = femdem(2, "check '" + scene.string() + "'");
+  EXPECT_EQ(check.code, 2) << check.output;
+  EXPECT_NE(check.output.find("only run and resume take several ranks"), std::string::npos)
+      << check.output;
+}
+
+}  // namespace
+}  // namespace femdem::test

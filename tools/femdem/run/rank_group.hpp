@@ -1,0 +1,69 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// A run on several ranks (`mpirun -np N femdem run SCENE`; docs/ARCHITECTURE.md, "Distributed
+// runs"). Every rank steps its part of the model. Rank 0 also keeps a Simulation of the whole
+// model that it never steps: the run loop reads it and writes the outputs and checkpoints from
+// it, as in one process, after gathering into it what they need. Rank 0 leads: each of its
+// calls below is a command the other ranks, in follow(), carry out with it, so that every rank
+// calls the same collective operations in the same order.
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "engine/distributed/communicator.hpp"
+#include "engine/distributed/partition.hpp"
+#include "engine/distributed/state_transfer.hpp"
+#include "engine/simulation.hpp"
+
+namespace femdem {
+
+class RankGroup {
+ public:
+  // Every rank: cuts `whole` among the ranks and builds this rank's part (collective: the part's
+  // stable step). Throws InputError when the model cannot be split this many ways or holds what
+  // distributed runs cannot do yet (the same on every rank).
+  RankGroup(const Model& whole, const Communicator& comm);
+  // Rank 0: tells the others to stop, if no stop() was called (an error on rank 0 only).
+  ~RankGroup();
+  RankGroup(const RankGroup&) = delete;
+  RankGroup& operator=(const RankGroup&) = delete;
+
+  int ranks() const { return comm_.size(); }
+  // Rank 0: how many ghost nodes each rank sends its neighbours every step (their positions and
+  // velocities: 48 bytes a node), in rank order.
+  const std::vector<std::int64_t>& ghosts_sent() const { return ghosts_sent_; }
+  const Partition& partition() const { return partition_; }
+  const Simulation& part() const { return *local_; }
+
+  // Rank 0's commands (`view`: its whole-model Simulation).
+  // One step of every part; the view takes the part's time and step.
+  void step(double dt_limit, Simulation& view);
+  // Every body's motion (Simulation::body_motions) on rank 0.
+  void body_motions(std::vector<BodyState>& out);
+  void gather(Simulation& view, GatheredState what);
+  // Every part takes its state from the view (after it read a checkpoint).
+  void scatter(Simulation& view);
+  void stop();
+
+  // The other ranks: carry out rank 0's commands until it stops. Rethrows an InstabilityError
+  // of a step once rank 0 has written its outputs and stopped.
+  void follow();
+
+ private:
+  enum class Command : int { step, body_motions, gather_outputs, gather_everything, scatter, stop };
+  struct Message {
+    Command command = Command::stop;
+    double dt_limit = 0.0;
+  };
+  void send(Command c, double dt_limit = 0.0);
+
+  const Communicator& comm_;
+  Partition partition_;
+  Distribution dist_;
+  std::unique_ptr<Simulation> local_;
+  std::vector<BodyState> motions_;  // followers' scratch
+  std::vector<std::int64_t> ghosts_sent_;
+  bool stopped_ = false;
+};
+
+}  // namespace femdem
