@@ -92,6 +92,7 @@ class Simulation {
   Energies energies() const;
   // (energies().balance() - its initial value) / max(initial total, largest energy seen)
   double balance_error() const;
+  // The whole state of a body (its motion summed as body_samples sums it).
   BodyState body_state(int body) const;
   // The cheap part of body_state (no volume, no bounding box), for per-step monitoring.
   BodyState body_motion(int body) const;
@@ -102,6 +103,10 @@ class Simulation {
   // Largest principal Cauchy stress (tension positive) over the body's Gauss points now: the
   // peak tension that cracks concrete, e.g. in the arms of a dropped armour unit.
   double max_principal_stress(int body) const;
+  // What a history row shows of every body: its motion as body_motion, but summed exactly (the
+  // same bits however its nodes are shared among threads or ranks), and its largest principal
+  // stress. Distributed: every rank calls it, and the results are complete on rank 0.
+  void body_samples(std::vector<BodyState>& motions, std::vector<double>& max_principal) const;
   Vec3 wall_position(int wall) const { return model_.walls[wall].point; }
   Vec3 wall_force(int wall) const { return model_.walls[wall].force; }
   Vec3 wall_velocity(int wall) const { return model_.walls[wall].velocity; }
@@ -150,7 +155,12 @@ class Simulation {
   }
   double reduce_min(double x) const { return dist_ ? dist_->comm->min(x) : x; }
   void check_distributable() const;
-  void gather_body_motions(std::vector<BodyState>& out) const;
+  // Distributed: rank 0 gets the rows of the bodies other ranks hold whole (their motion and
+  // largest tension, in `out` and `tension` on their rank), and every body cut among ranks
+  // summed over them.
+  void gather_body_rows(std::vector<BodyState>& out, std::vector<double>& tension,
+                        bool with_tension) const;
+  double element_max_principal_stress(std::int64_t e) const;
   // Throws InstabilityError once the balance's change exceeds settings.energy_balance_limit
   // times the largest energy seen (at least energy_floor_).
   void check_energy_balance(const Energies& en) const;

@@ -99,6 +99,64 @@ BodyState Simulation::body_motion(int bi) const {
   return s;
 }
 
+namespace {
+
+// A body's motion as exact sums over the nodes `owned` says (mass, m x, m v, kinetic energy,
+// contact force), and the state they give.
+constexpr int kMotionSums = 11;
+
+template <class Owned>
+void add_motion_sums(const Model& m, const Body& body, Owned owned, ExactSum* s) {
+  for (std::int32_t n = body.first_node; n < body.first_node + body.node_count; ++n) {
+    if (!owned(n)) continue;
+    const double mn = m.mass[n];
+    const double* x = m.x.data() + 3 * static_cast<std::size_t>(n);
+    const double* v = m.v.data() + 3 * static_cast<std::size_t>(n);
+    const double* f = m.f_contact.data() + 3 * static_cast<std::size_t>(n);
+    s[0].add(mn);
+    for (int k = 0; k < 3; ++k) s[1 + k].add(mn * x[k]), s[4 + k].add(mn * v[k]);
+    s[7].add(0.5 * mn * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
+    for (int k = 0; k < 3; ++k) s[8 + k].add(f[k]);
+  }
+}
+
+BodyState motion_from_sums(double mass, double added_mass, const ExactSum* s) {
+  BodyState o;
+  o.mass = mass;
+  o.added_mass = added_mass;
+  const double msum = s[0].value();
+  o.com = Vec3(s[1].value(), s[2].value(), s[3].value()) / msum;
+  o.vcom = Vec3(s[4].value(), s[5].value(), s[6].value()) / msum;
+  o.kinetic_energy = s[7].value();
+  o.contact_force = Vec3(s[8].value(), s[9].value(), s[10].value());
+  return o;
+}
+
+// What a rank sends rank 0 of each body it holds whole: its motion and largest tension.
+constexpr int kRowNumbers = 13;
+
+void to_row(const BodyState& s, double tension, double* row) {
+  const double r[kRowNumbers] = {
+      s.mass,           s.added_mass,       s.com[0],           s.com[1],
+      s.com[2],         s.vcom[0],          s.vcom[1],          s.vcom[2],
+      s.kinetic_energy, s.contact_force[0], s.contact_force[1], s.contact_force[2],
+      tension};
+  std::copy(r, r + kRowNumbers, row);
+}
+
+void from_row(const double* row, BodyState& s, double& tension) {
+  s = BodyState{};
+  s.mass = row[0];
+  s.added_mass = row[1];
+  s.com = Vec3(row[2], row[3], row[4]);
+  s.vcom = Vec3(row[5], row[6], row[7]);
+  s.kinetic_energy = row[8];
+  s.contact_force = Vec3(row[9], row[10], row[11]);
+  tension = row[12];
+}
+
+}  // namespace
+
 void Simulation::body_motions(std::vector<BodyState>& out) const {
   const auto nb = static_cast<std::int64_t>(model_.bodies.size());
   out.resize(model_.bodies.size());
@@ -108,49 +166,83 @@ void Simulation::body_motions(std::vector<BodyState>& out) const {
                                   1) if (nb > 1 && model_.node_count > kParallelMinElements)
   for (std::int64_t b = 0; b < nb; ++b)
     if (!dist_ || dist_->part.body_rank[b] == rank) out[b] = body_motion(static_cast<int>(b));
-  if (dist_) gather_body_motions(out);
+  if (!dist_) return;
+  // A body cut among ranks is summed over each rank's owned nodes and the ranks' sums added:
+  // not the bits of one process's serial sum (the restitution monitors' per-step speeds of such
+  // a body agree with it to round-off; the history rows use body_samples, which keep the bits).
+  std::vector<double> unused(model_.bodies.size(), 0.0);
+  gather_body_rows(out, unused, false);
 }
 
-void Simulation::gather_body_motions(std::vector<BodyState>& out) const {
-  // The bodies held whole go to rank 0 from their rank, as they are. A body cut among ranks is
-  // summed exactly over each rank's owned nodes and the sums added: not the bits of one
-  // process's serial sum (the restitution monitors' per-step speeds of such a body agree with
-  // it to round-off; history rows and frames read the gathered state and keep the bits).
+void Simulation::body_samples(std::vector<BodyState>& out, std::vector<double>& tension) const {
+  const Model& m = model_;
+  const auto nb = static_cast<std::int64_t>(m.bodies.size());
+  out.assign(m.bodies.size(), BodyState{});
+  tension.assign(m.bodies.size(), -HUGE_VAL);
+  const int rank = dist_ ? dist_->comm->rank() : 0;
+  // exact sums, so that a body's figures do not depend on how its nodes are shared out
+#pragma omp parallel for schedule(dynamic, 1) if (nb > 1 && m.node_count > kParallelMinElements)
+  for (std::int64_t b = 0; b < nb; ++b) {
+    if (dist_ && dist_->part.body_rank[b] != rank) continue;
+    ExactSum s[kMotionSums];
+    add_motion_sums(
+        m, m.bodies[b], [](std::int32_t) { return true; }, s);
+    out[b] = motion_from_sums(m.bodies[b].mass, body_added_mass_[b], s);
+    tension[b] = max_principal_stress(static_cast<int>(b));
+  }
+  if (dist_) gather_body_rows(out, tension, true);
+}
+
+void Simulation::gather_body_rows(std::vector<BodyState>& out, std::vector<double>& tension,
+                                  bool with_tension) const {
+  // The bodies held whole go to rank 0 from their rank, as they are; a body cut among ranks is
+  // summed exactly over the ranks' owned nodes (its largest tension: the largest of theirs).
   const Model& m = model_;
   const Communicator& comm = *dist_->comm;
   const std::vector<std::int32_t>& body_rank = dist_->part.body_rank;
-  constexpr int kSums = 11;  // mass, m x, m v, kinetic energy, contact force
   std::vector<ExactSum> cut;
   std::vector<std::size_t> cut_bodies;
+  std::vector<double> cut_tension;  // negated: the ranks take minima
   for (std::size_t b = 0; b < m.bodies.size(); ++b) {
     if (body_rank[b] >= 0) continue;
     cut_bodies.push_back(b);
-    cut.resize(cut.size() + kSums);
-    ExactSum* s = cut.data() + cut.size() - kSums;
-    const Body& body = m.bodies[b];
-    for (std::int32_t n = body.first_node; n < body.first_node + body.node_count; ++n) {
-      if (!owns_node(n)) continue;
-      const double mn = m.mass[n];
-      const double* x = m.x.data() + 3 * static_cast<std::size_t>(n);
-      const double* v = m.v.data() + 3 * static_cast<std::size_t>(n);
-      const double* f = m.f_contact.data() + 3 * static_cast<std::size_t>(n);
-      s[0].add(mn);
-      for (int k = 0; k < 3; ++k) s[1 + k].add(mn * x[k]), s[4 + k].add(mn * v[k]);
-      s[7].add(0.5 * mn * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
-      for (int k = 0; k < 3; ++k) s[8 + k].add(f[k]);
+    cut.resize(cut.size() + kMotionSums);
+    ExactSum* sums = cut.data() + cut.size() - kMotionSums;
+    if (with_tension) {  // a history row: exact over the nodes
+      add_motion_sums(
+          m, m.bodies[b], [&](std::int32_t n) { return owns_node(n); }, sums);
+    } else {
+      // every step: this rank's plain sums (a quarter of the cost), added exactly over the
+      // ranks; round-off apart from one process's serial sums either way
+      double plain[kMotionSums] = {};
+      const Body& body = m.bodies[b];
+      for (std::int32_t n = body.first_node; n < body.first_node + body.node_count; ++n) {
+        if (!owns_node(n)) continue;
+        const double mn = m.mass[n];
+        const double* x = m.x.data() + 3 * static_cast<std::size_t>(n);
+        const double* v = m.v.data() + 3 * static_cast<std::size_t>(n);
+        const double* f = m.f_contact.data() + 3 * static_cast<std::size_t>(n);
+        plain[0] += mn;
+        for (int k = 0; k < 3; ++k) plain[1 + k] += mn * x[k], plain[4 + k] += mn * v[k];
+        plain[7] += 0.5 * mn * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        for (int k = 0; k < 3; ++k) plain[8 + k] += f[k];
+      }
+      for (int k = 0; k < kMotionSums; ++k) sums[k].add(plain[k]);
     }
+    double largest = -HUGE_VAL;
+    const Body& body = m.bodies[b];
+    if (with_tension)
+      for (std::int32_t e = body.first_element; e < body.first_element + body.element_count; ++e)
+        if (owns_element(e)) largest = std::max(largest, element_max_principal_stress(e));
+    cut_tension.push_back(-largest);
   }
   reduce(cut);
-  constexpr int kNumbers = 12;
+  if (with_tension && !cut_tension.empty()) comm.min(cut_tension);
   std::vector<double> mine;
   for (std::size_t b = 0; b < m.bodies.size(); ++b) {
     if (body_rank[b] != comm.rank()) continue;
-    const BodyState& s = out[b];
-    const double row[kNumbers] = {
-        s.mass,           s.added_mass,       s.com[0],           s.com[1],
-        s.com[2],         s.vcom[0],          s.vcom[1],          s.vcom[2],
-        s.kinetic_energy, s.contact_force[0], s.contact_force[1], s.contact_force[2]};
-    mine.insert(mine.end(), row, row + kNumbers);
+    mine.resize(mine.size() + kRowNumbers);
+    to_row(out[b], tension[b], mine.data() + mine.size() - kRowNumbers);
   }
   const auto* bytes = reinterpret_cast<const std::byte*>(mine.data());
   const std::vector<std::vector<std::byte>> all =
@@ -160,56 +252,34 @@ void Simulation::gather_body_motions(std::vector<BodyState>& out) const {
     std::size_t at = 0;
     for (std::size_t b = 0; b < m.bodies.size(); ++b) {
       if (body_rank[b] != r) continue;
-      double row[kNumbers];
+      double row[kRowNumbers];
       std::memcpy(row, all[r].data() + at, sizeof row);
       at += sizeof row;
-      BodyState& s = out[b];
-      s = BodyState{};
-      s.mass = row[0];
-      s.added_mass = row[1];
-      s.com = Vec3(row[2], row[3], row[4]);
-      s.vcom = Vec3(row[5], row[6], row[7]);
-      s.kinetic_energy = row[8];
-      s.contact_force = Vec3(row[9], row[10], row[11]);
+      from_row(row, out[b], tension[b]);
     }
   }
   for (std::size_t k = 0; k < cut_bodies.size(); ++k) {
-    const ExactSum* s = cut.data() + kSums * k;
-    BodyState& o = out[cut_bodies[k]];
-    o = BodyState{};
-    o.mass = m.bodies[cut_bodies[k]].mass;
-    o.added_mass = body_added_mass_[cut_bodies[k]];
-    const double msum = s[0].value();
-    o.com = Vec3(s[1].value(), s[2].value(), s[3].value()) / msum;
-    o.vcom = Vec3(s[4].value(), s[5].value(), s[6].value()) / msum;
-    o.kinetic_energy = s[7].value();
-    o.contact_force = Vec3(s[8].value(), s[9].value(), s[10].value());
+    const std::size_t b = cut_bodies[k];
+    out[b] = motion_from_sums(m.bodies[b].mass, body_added_mass_[b], cut.data() + kMotionSums * k);
+    tension[b] = -cut_tension[k];
   }
 }
 
 BodyState Simulation::body_state(int bi) const {
   const Model& m = model_;
   const Body& b = m.bodies[bi];
-  BodyState s;
-  s.mass = b.mass;
-  s.added_mass = body_added_mass_[bi];
+  // the motion as the history rows have it (body_samples: exact sums)
+  ExactSum sums[kMotionSums];
+  add_motion_sums(
+      m, b, [](std::int32_t) { return true; }, sums);
+  BodyState s = motion_from_sums(b.mass, body_added_mass_[bi], sums);
   s.bbox_min = Vec3::Constant(HUGE_VAL);
   s.bbox_max = Vec3::Constant(-HUGE_VAL);
-  double msum = 0.0;
   for (std::int32_t n = b.first_node; n < b.first_node + b.node_count; ++n) {
     const Vec3 p(m.x[3 * n], m.x[3 * n + 1], m.x[3 * n + 2]);
-    const Vec3 v(m.v[3 * n], m.v[3 * n + 1], m.v[3 * n + 2]);
-    const double mn = m.mass[n];
-    msum += mn;
-    s.com += mn * p;
-    s.vcom += mn * v;
-    s.kinetic_energy += 0.5 * mn * v.squaredNorm();
-    s.contact_force += Vec3(m.f_contact[3 * n], m.f_contact[3 * n + 1], m.f_contact[3 * n + 2]);
     s.bbox_min = s.bbox_min.cwiseMin(p);
     s.bbox_max = s.bbox_max.cwiseMax(p);
   }
-  s.com /= msum;
-  s.vcom /= msum;
   // current volume: integral of det F over the reference element
   double vol = 0.0;
   for (std::int32_t e = b.first_element; e < b.first_element + b.element_count; ++e) {
@@ -243,21 +313,26 @@ BodyState Simulation::body_state(int bi) const {
   return s;
 }
 
-double Simulation::max_principal_stress(int bi) const {
-  const Body& b = model_.bodies[bi];
-  const std::int64_t g0 = 4 * static_cast<std::int64_t>(b.first_element);
-  const std::int64_t g1 = g0 + 4 * static_cast<std::int64_t>(b.element_count);
+double Simulation::element_max_principal_stress(std::int64_t e) const {
   double largest = -HUGE_VAL;
-  // max is exact in any order, so the reduction gives the same bits with any thread count
-#pragma omp parallel for schedule(static) \
-    reduction(max                         \
-              : largest) if (g1 - g0 > 4 * kParallelMinElements)
-  for (std::int64_t g = g0; g < g1; ++g) {
+  for (int gp = 0; gp < 4; ++gp) {
     // the point's 6 components, 4 apart in the [element][component][point] layout
-    const double* first = model_.stress.data() + 24 * (g / 4) + g % 4;
+    const double* first = model_.stress.data() + 24 * e + gp;
     const double s[6] = {first[0], first[4], first[8], first[12], first[16], first[20]};
     largest = std::max(largest, largest_eigenvalue3(s));
   }
+  return largest;
+}
+
+double Simulation::max_principal_stress(int bi) const {
+  const Body& b = model_.bodies[bi];
+  const std::int64_t e0 = b.first_element, e1 = e0 + b.element_count;
+  double largest = -HUGE_VAL;
+  // max is exact in any order, so the reduction gives the same bits with any thread count
+#pragma omp parallel for schedule(static) reduction(max \
+                                                    : largest) if (e1 - e0 > kParallelMinElements)
+  for (std::int64_t e = e0; e < e1; ++e)
+    largest = std::max(largest, element_max_principal_stress(e));
   return largest;
 }
 

@@ -57,6 +57,7 @@ class StateArchive {
   void array(std::string_view name, std::vector<T>& v, Length length = Length::fixed) {
     static_assert(std::is_trivially_copyable_v<T>, "an archived item must be plain data");
     const std::string path = prefix_ + std::string(name);
+    if (skips(path)) return;
     if (saving()) {
       write(path, type_of<T>(), sizeof(T), v.size(), v.data());
       return;
@@ -70,6 +71,7 @@ class StateArchive {
   }
   // Positions and the like: three doubles each.
   void array(std::string_view name, std::vector<Vec3>& v, Length length = Length::fixed) {
+    if (skips(prefix_ + std::string(name))) return;
     std::vector<double> flat;
     if (saving()) {
       flat.resize(3 * v.size());
@@ -108,6 +110,9 @@ class StateArchive {
   }
 
  protected:
+  // An archive of part of the state (a distributed run's gather of what the outputs read) skips
+  // the other arrays: neither saved nor loaded, they keep their values.
+  virtual bool skips(const std::string& /*path*/) const { return false; }
   // Saving: `count` items of `item_bytes` each.
   virtual void write(const std::string& path, Type type, std::size_t item_bytes, std::size_t count,
                      const void* data) = 0;

@@ -88,6 +88,12 @@ double Communicator::min(double x) const {
   return x;
 }
 
+void Communicator::min(std::span<double> x) const {
+  if (size_ > 1 && !x.empty())
+    MPI_Allreduce(MPI_IN_PLACE, x.data(), static_cast<int>(x.size()), MPI_DOUBLE, MPI_MIN,
+                  MPI_COMM_WORLD);
+}
+
 std::int64_t Communicator::min(std::int64_t x) const {
   if (size_ > 1) MPI_Allreduce(MPI_IN_PLACE, &x, 1, MPI_INT64_T, MPI_MIN, MPI_COMM_WORLD);
   return x;

@@ -32,6 +32,8 @@ class Communicator {
   // Every rank gets the totals of the ranks' accumulators (their limbs added as integers: exact).
   void sum(std::span<ExactSum> sums) const;
   double min(double x) const;
+  // Element by element over the ranks.
+  void min(std::span<double> x) const;
   std::int64_t min(std::int64_t x) const;
   bool all(bool flag) const;
   // The ghost nodes' values from their owners: `width` doubles per node of `part`, in local

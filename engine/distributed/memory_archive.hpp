@@ -7,6 +7,7 @@
 // into bytes for a message.
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <unordered_map>
@@ -26,8 +27,10 @@ class MemoryArchive final : public StateArchive {
     std::vector<std::byte> data;  // count * item_bytes
   };
 
-  // Saves until load() is called.
+  // Saves until load() is called; with `keep`, only the arrays it is true for (the others are
+  // skipped, saving and loading).
   MemoryArchive() = default;
+  explicit MemoryArchive(std::function<bool(const std::string&)> keep) : keep_(std::move(keep)) {}
   // From pack()'s bytes (loading). Throws CheckpointError on bytes that are not a packed archive.
   explicit MemoryArchive(std::span<const std::byte> packed);
 
@@ -44,6 +47,7 @@ class MemoryArchive final : public StateArchive {
   std::vector<std::byte> pack() const;
 
  protected:
+  bool skips(const std::string& path) const override { return keep_ && !keep_(path); }
   void write(const std::string& path, Type type, std::size_t item_bytes, std::size_t count,
              const void* data) override;
   std::size_t stored_count(const std::string& path, Type type, std::size_t item_bytes) override;
@@ -55,6 +59,7 @@ class MemoryArchive final : public StateArchive {
   std::vector<Entry> entries_;
   std::unordered_map<std::string, std::size_t> by_path_;
   const Entry* reading_ = nullptr;
+  std::function<bool(const std::string&)> keep_;
 };
 
 }  // namespace femdem

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <functional>
 #include <stdexcept>
 
 #include "engine/distributed/memory_archive.hpp"
@@ -169,7 +170,14 @@ void gather_state(Simulation& local, const Distribution& dist, const Partition& 
                   Simulation* whole, GatheredState what) {
   const Communicator& comm = *dist.comm;
   const LocalPart& part = dist.part;
-  MemoryArchive mine;
+  // (for the outputs: what they read, and what is alike on every rank, which is small)
+  std::function<bool(const std::string&)> keep;
+  if (what == GatheredState::outputs)
+    keep = [](const std::string& path) {
+      const Spread s = spread_of(path);
+      return read_by_outputs(path) || s == Spread::same;
+    };
+  MemoryArchive mine(keep);
   local.exchange_state(mine);
   // this rank's owned rows of the arrays spread over the ranks
   MemoryArchive owned;
@@ -200,7 +208,7 @@ void gather_state(Simulation& local, const Distribution& dist, const Partition& 
   const std::vector<std::vector<std::byte>> all = comm.gather(owned.pack());
   if (comm.rank() != 0) return;
 
-  MemoryArchive w;  // the whole model's state as it stands, then updated
+  MemoryArchive w(keep);  // the whole model's state as it stands, then updated
   whole->exchange_state(w);
   for (const MemoryArchive::Entry& e : mine.entries()) {
     if (spread_of(e.path) != Spread::same) continue;

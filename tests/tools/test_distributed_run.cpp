@@ -19,6 +19,7 @@
 
 #include "support/run_command.hpp"
 #include "support/run_outputs.hpp"
+#include "support/square_die.hpp"
 
 namespace femdem::test {
 namespace {
@@ -118,7 +119,7 @@ normal = [0.0, 0.0, 1.0]
 // A Drucker-Prager block pressed in a die with friction by a force-driven punch: the walls'
 // forces (reduced over the ranks), friction springs carried across the ranks' near lists,
 // the punch's own motion from those forces.
-const char* const kDiePress = R"(title = "distributed: block pressed in a die"
+const std::string kDiePress = R"(title = "distributed: block pressed in a die"
 [simulation]
 end_time = 1.2e-4
 output_interval = 2e-5
@@ -155,27 +156,8 @@ force_history = [[0.0, 0.0], [6e-5, 2e4], [1.2e-4, 2e4]]
 mass = 0.05
 velocity = [0.0, 0.0, -5.0]
 
-[[walls]]
-name = "left"
-point = [-4e-3, 0.0, 0.0]
-normal = [1.0, 0.0, 0.0]
-friction = 0.2
-[[walls]]
-name = "right"
-point = [4e-3, 0.0, 0.0]
-normal = [-1.0, 0.0, 0.0]
-friction = 0.2
-[[walls]]
-name = "front"
-point = [0.0, -4e-3, 0.0]
-normal = [0.0, 1.0, 0.0]
-friction = 0.2
-[[walls]]
-name = "back"
-point = [0.0, 4e-3, 0.0]
-normal = [0.0, -1.0, 0.0]
-friction = 0.2
-)";
+)" + std::string(kSquareDieSideWalls) +
+                              R"()";
 
 struct SceneCase {
   const char* text;
@@ -187,7 +169,7 @@ SceneCase scene_case(const std::string& name) {
   if (name == "elastic_bar") return {kElasticBar, "3.0", "6.0"};
   if (name == "plastic_bar") return {kPlasticBar, "1e-4", "2e-4"};
   if (name == "taylor_bar") return {kTaylorBar, "8e-6", "16e-6"};
-  return {kDiePress, "6e-5", "1.2e-4"};
+  return {kDiePress.c_str(), "6e-5", "1.2e-4"};
 }
 
 fs::path tmp_dir() {
@@ -204,9 +186,13 @@ fs::path write_scene(const std::string& name, const char* text) {
 // `femdem ARGS` in one process (ranks 1) or under mpirun.
 CommandResult femdem(int ranks, const std::string& args) {
   std::string exe = std::string("'") + FEMDEM_EXE + "' ";
+  // (--oversubscribe: CI has 2 cores; --allow-run-as-root: CI runs as root; no leak check
+  // under the sanitizers: Open MPI's start-up allocations, see tests/CMakeLists.txt)
   if (ranks > 1)
     exe = std::string("'") + FEMDEM_MPIEXEC + "' -np " + std::to_string(ranks) +
-          " --oversubscribe --allow-run-as-root -x OMP_NUM_THREADS=1 " + exe;
+          " --oversubscribe --allow-run-as-root -x OMP_NUM_THREADS=1 -x "
+          "ASAN_OPTIONS=detect_leaks=0 " +
+          exe;
   return run_command(exe + args);
 }
 

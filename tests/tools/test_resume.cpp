@@ -33,6 +33,7 @@
 #include "io/checkpoint/checkpoint_file.hpp"
 #include "support/run_command.hpp"
 #include "support/run_outputs.hpp"
+#include "support/square_die.hpp"
 #include "support/steel_ball_scene.hpp"
 
 extern char** environ;
@@ -134,7 +135,7 @@ friction = 0.3
 impact_damping = 0.1
 )";
 
-const char* const kDie = R"(title = "restart: force-driven punch in a die"
+const std::string kDie = R"(title = "restart: force-driven punch in a die"
 [simulation]
 end_time = 3e-4
 output_interval = 3e-5
@@ -176,27 +177,8 @@ force_history = [[0.0, 0.0], [1.5e-4, 4e4], [3e-4, 4e4]]
 mass = 0.2
 velocity = [0.0, 0.0, -2.0]
 
-[[walls]]
-name = "left"
-point = [-4e-3, 0.0, 0.0]
-normal = [1.0, 0.0, 0.0]
-friction = 0.2
-[[walls]]
-name = "right"
-point = [4e-3, 0.0, 0.0]
-normal = [-1.0, 0.0, 0.0]
-friction = 0.2
-[[walls]]
-name = "front"
-point = [0.0, -4e-3, 0.0]
-normal = [0.0, 1.0, 0.0]
-friction = 0.2
-[[walls]]
-name = "back"
-point = [0.0, 4e-3, 0.0]
-normal = [0.0, -1.0, 0.0]
-friction = 0.2
-
+)" + std::string(kSquareDieSideWalls) +
+                         R"(
 [contact]
 friction = 0.2
 
@@ -307,7 +289,8 @@ class Resume : public ::testing::TestWithParam<std::tuple<std::string, int>> {};
 TEST_P(Resume, AfterSigkillAtARandomStepGivesTheUninterruptedRunsBits) {
   const auto [name, threads] = GetParam();
   const std::string tag = "killed_" + std::to_string(threads);
-  const Reference ref = reference(name, name == "every_feature" ? kEveryFeature : kDie, tag);
+  const Reference ref =
+      reference(name, name == "every_feature" ? kEveryFeature : kDie.c_str(), tag);
   const fs::path out = tmp_dir() / (name + "_" + tag);
   ASSERT_TRUE(run_and_signal(ref.scene, out, threads, SIGKILL, 17u + threads, ref.out))
       << "the run ended before it could be killed";
@@ -330,7 +313,8 @@ TEST_P(Resume, AfterSigkillAtARandomStepGivesTheUninterruptedRunsBits) {
 TEST_P(Resume, AfterSigtermGivesTheUninterruptedRunsBits) {
   const auto [name, threads] = GetParam();
   const std::string tag = "terminated_" + std::to_string(threads);
-  const Reference ref = reference(name, name == "every_feature" ? kEveryFeature : kDie, tag);
+  const Reference ref =
+      reference(name, name == "every_feature" ? kEveryFeature : kDie.c_str(), tag);
   const fs::path out = tmp_dir() / (name + "_" + tag);
   ASSERT_TRUE(run_and_signal(ref.scene, out, threads, SIGTERM, 5u + threads, ref.out));
   const nlohmann::json s = nlohmann::json::parse(read_text(out / "summary.json"));
@@ -428,7 +412,7 @@ TEST(ResumeCheckpoints, AreWrittenByWallClockAndOnceBeforeTheLastSteps) {
 }
 
 TEST(ResumeExtend, AFinishedRunWithALaterEndTimeEqualsTheLongerRun) {
-  const fs::path scene = write_scene("extend", kDie);
+  const fs::path scene = write_scene("extend", kDie.c_str());
   const fs::path longer = tmp_dir() / "extend_longer", extended = tmp_dir() / "extend_extended";
   ASSERT_EQ(run(scene, longer, "--threads 1 --set simulation.end_time=3.6e-4").code, 0);
   ASSERT_EQ(run(scene, extended, "--threads 1").code, 0);
@@ -445,7 +429,7 @@ std::map<std::string, std::string> folder_contents(const fs::path& dir) {
 }
 
 TEST(ResumeRefuses, BadCheckpointsAndChangesWithExit2AndTouchesNothing) {
-  const fs::path scene = write_scene("refuse", kDie);
+  const fs::path scene = write_scene("refuse", kDie.c_str());
   const fs::path out = tmp_dir() / "refuse_run";
   ASSERT_TRUE(run_and_signal(scene, out, 1, SIGKILL, 3u, fs::path()));
   const fs::path other = tmp_dir() / "refuse_other";

@@ -31,10 +31,14 @@ struct HistorySample {
   std::optional<double> max_penetration;       // when bodies can touch each other
   double max_penetration_per_size = 0.0;       // of the body pairs
   std::optional<CompactionSample> compaction;  // when the scene has [compaction]
+  // scratch of take_sample
+  std::vector<BodyState> motions;
+  std::vector<double> tensions;
 };
 
 // Fills `s` from the simulation now (reusing its vectors), all but the compaction columns,
-// which the caller samples (and times) itself.
+// which the caller samples (and times) itself. In a distributed run every rank calls it on its
+// part (tools/femdem/run/rank_group.hpp), and `s` is complete on rank 0.
 inline void take_sample(const Simulation& sim, HistorySample& s) {
   const Model& m = sim.model();
   s.time = sim.time();
@@ -42,10 +46,8 @@ inline void take_sample(const Simulation& sim, HistorySample& s) {
   s.energies = sim.energies();
   s.balance_error = sim.balance_error();
   s.bodies.resize(m.bodies.size());
-  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
-    s.bodies[b].motion = sim.body_motion(static_cast<int>(b));
-    s.bodies[b].max_principal_stress = sim.max_principal_stress(static_cast<int>(b));
-  }
+  sim.body_samples(s.motions, s.tensions);
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) s.bodies[b] = {s.motions[b], s.tensions[b]};
   s.walls.resize(m.walls.size());
   for (std::size_t w = 0; w < m.walls.size(); ++w)
     s.walls[w] = {sim.wall_force(static_cast<int>(w)), sim.wall_position(static_cast<int>(w)),

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "tools/femdem/run/rank_group.hpp"
 
+#include <chrono>
 #include <cstring>
 #include <exception>
 #include <optional>
@@ -40,18 +41,46 @@ void RankGroup::send(Command c, double dt_limit) {
   comm_.broadcast(&m, sizeof m);
 }
 
+namespace {
+
+// Adds the wall-clock time of its scope to `total`.
+class Timed {
+ public:
+  explicit Timed(double& total) : total_(total), t0_(std::chrono::steady_clock::now()) {}
+  ~Timed() {
+    total_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
+  }
+  Timed(const Timed&) = delete;
+  Timed& operator=(const Timed&) = delete;
+
+ private:
+  double& total_;
+  std::chrono::steady_clock::time_point t0_;
+};
+
+}  // namespace
+
 void RankGroup::step(double dt_limit, Simulation& view) {
+  const Timed t(times_.step_s);
   send(Command::step, dt_limit);
   local_->step(dt_limit);
   view.follow_clock(*local_);
 }
 
 void RankGroup::body_motions(std::vector<BodyState>& out) {
+  const Timed t(times_.body_motions_s);
   send(Command::body_motions);
   local_->body_motions(out);
 }
 
+void RankGroup::sample(HistorySample& s) {
+  const Timed t(times_.sample_s);
+  send(Command::sample);
+  take_sample(*local_, s);
+}
+
 void RankGroup::gather(Simulation& view, GatheredState what) {
+  const Timed t(times_.gather_s);
   send(what == GatheredState::outputs ? Command::gather_outputs : Command::gather_everything);
   gather_state(*local_, dist_, partition_, &view, what);
 }
@@ -83,6 +112,9 @@ void RankGroup::follow() {
         break;
       case Command::body_motions:
         local_->body_motions(motions_);
+        break;
+      case Command::sample:
+        take_sample(*local_, sample_);
         break;
       case Command::gather_outputs:
         gather_state(*local_, dist_, partition_, nullptr, GatheredState::outputs);

@@ -14,6 +14,7 @@
 #include "engine/distributed/partition.hpp"
 #include "engine/distributed/state_transfer.hpp"
 #include "engine/simulation.hpp"
+#include "tools/femdem/run/history_sample.hpp"
 
 namespace femdem {
 
@@ -32,6 +33,12 @@ class RankGroup {
   // Rank 0: how many ghost nodes each rank sends its neighbours every step (their positions and
   // velocities: 48 bytes a node), in rank order.
   const std::vector<std::int64_t>& ghosts_sent() const { return ghosts_sent_; }
+  // Rank 0: wall-clock seconds spent so far in its commands (the steps with their exchanges,
+  // the per-step body motions, the gathers for outputs and checkpoints).
+  struct Times {
+    double step_s = 0.0, body_motions_s = 0.0, sample_s = 0.0, gather_s = 0.0;
+  };
+  const Times& times() const { return times_; }
   const Partition& partition() const { return partition_; }
   const Simulation& part() const { return *local_; }
 
@@ -41,6 +48,8 @@ class RankGroup {
   // Every body's motion (Simulation::body_motions) on rank 0.
   void body_motions(std::vector<BodyState>& out);
   void gather(Simulation& view, GatheredState what);
+  // A history row's figures (take_sample) from the parts, on rank 0.
+  void sample(HistorySample& s);
   // Every part takes its state from the view (after it read a checkpoint).
   void scatter(Simulation& view);
   void stop();
@@ -50,7 +59,15 @@ class RankGroup {
   void follow();
 
  private:
-  enum class Command : int { step, body_motions, gather_outputs, gather_everything, scatter, stop };
+  enum class Command : int {
+    step,
+    body_motions,
+    sample,
+    gather_outputs,
+    gather_everything,
+    scatter,
+    stop
+  };
   struct Message {
     Command command = Command::stop;
     double dt_limit = 0.0;
@@ -62,7 +79,9 @@ class RankGroup {
   Distribution dist_;
   std::unique_ptr<Simulation> local_;
   std::vector<BodyState> motions_;  // followers' scratch
+  HistorySample sample_;
   std::vector<std::int64_t> ghosts_sent_;
+  Times times_;
   bool stopped_ = false;
 };
 

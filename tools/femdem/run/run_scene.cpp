@@ -264,6 +264,11 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
   // model's Simulation as the view that is written, the others follow its commands.
   std::optional<RankGroup> ranks;
   if (const Communicator& world = Communicator::world(); world.size() > 1) {
+    if (spec.compaction)
+      throw InputError(
+          "distributed runs cannot yet do this scene: [compaction] (issue 23, "
+          "docs/ARCHITECTURE.md \"Distributed runs\"); run it as one process",
+          scene.path);
     ranks.emplace(whole_model, world);
     if (world.rank() != 0) {
       whole_model = Model{};      // (only rank 0 keeps the whole model)
@@ -431,8 +436,10 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
   };
   HistorySample sample;
   auto write_history = [&] {
-    if (ranks) ranks->gather(sim, GatheredState::outputs);
-    take_sample(sim, sample);
+    if (ranks)
+      ranks->sample(sample);
+    else
+      take_sample(sim, sample);
     if (compaction) {
       const auto t0 = Clock::now();
       sample.compaction = compaction->sample(sim);
@@ -476,6 +483,8 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
   };
 
   auto finish_summary = [&](RunStatus status) {
+    // (the summary reads the whole model's state now)
+    if (ranks) ranks->gather(sim, GatheredState::outputs);
     const RunRecord record{.sim = sim,
                            .setup_time_s = setup_time,
                            .loop_time_s = earlier_loop_s + seconds_since(loop_start),
@@ -533,7 +542,6 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
     throw;
   }
   progress.clear();
-  if (ranks) ranks->stop();
   history->close();
   if (checkpoints > 0) {
     char buf[200];
@@ -545,6 +553,7 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
   if (signals.received() != 0) {
     results->close(false);
     finish_summary(RunStatus::interrupted);
+    if (ranks) ranks->stop();
     log.say("interrupted by signal " + std::to_string(signals.received()) +
             " at t = " + std::to_string(sim.time()) +
             " s; the frames written so far are readable. Continue with: femdem resume " +
@@ -553,7 +562,17 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
   }
   results->close(true);
   const RunSummary summary = finish_summary(RunStatus::completed);
+  if (ranks) ranks->stop();
   say_outcome(log, sim, rest, summary.wall_time_s, out);
+  if (ranks) {
+    const RankGroup::Times& t = ranks->times();
+    char buf[200];
+    std::snprintf(buf, sizeof buf,
+                  "rank 0's loop: %.3g s stepping, %.3g s body motions, %.3g s history rows, "
+                  "%.3g s gathering frames and checkpoints",
+                  t.step_s, t.body_motions_s, t.sample_s, t.gather_s);
+    log.file_only(std::string(buf) + "\n");
+  }
   if (compaction && !options.plot_script.empty()) plot_compaction(options.plot_script, out, log);
   return 0;
 }
