@@ -105,18 +105,26 @@ namespace {
 // contact force), and the state they give.
 constexpr int kMotionSums = 11;
 
-template <class Owned>
-void add_motion_sums(const Model& m, const Body& body, Owned owned, ExactSum* s) {
+inline void add_to(ExactSum& s, double x) {
+  s.add(x);
+}
+inline void add_to(double& s, double x) {
+  s += x;
+}
+
+// (Sum: ExactSum, or double for a plain serial sum)
+template <class Sum, class Owned>
+void add_motion_sums(const Model& m, const Body& body, Owned owned, Sum* s) {
   for (std::int32_t n = body.first_node; n < body.first_node + body.node_count; ++n) {
     if (!owned(n)) continue;
     const double mn = m.mass[n];
     const double* x = m.x.data() + 3 * static_cast<std::size_t>(n);
     const double* v = m.v.data() + 3 * static_cast<std::size_t>(n);
     const double* f = m.f_contact.data() + 3 * static_cast<std::size_t>(n);
-    s[0].add(mn);
-    for (int k = 0; k < 3; ++k) s[1 + k].add(mn * x[k]), s[4 + k].add(mn * v[k]);
-    s[7].add(0.5 * mn * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
-    for (int k = 0; k < 3; ++k) s[8 + k].add(f[k]);
+    add_to(s[0], mn);
+    for (int k = 0; k < 3; ++k) add_to(s[1 + k], mn * x[k]), add_to(s[4 + k], mn * v[k]);
+    add_to(s[7], 0.5 * mn * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
+    for (int k = 0; k < 3; ++k) add_to(s[8 + k], f[k]);
   }
 }
 
@@ -215,18 +223,8 @@ void Simulation::gather_body_rows(std::vector<BodyState>& out, std::vector<doubl
       // every step: this rank's plain sums (a quarter of the cost), added exactly over the
       // ranks; round-off apart from one process's serial sums either way
       double plain[kMotionSums] = {};
-      const Body& body = m.bodies[b];
-      for (std::int32_t n = body.first_node; n < body.first_node + body.node_count; ++n) {
-        if (!owns_node(n)) continue;
-        const double mn = m.mass[n];
-        const double* x = m.x.data() + 3 * static_cast<std::size_t>(n);
-        const double* v = m.v.data() + 3 * static_cast<std::size_t>(n);
-        const double* f = m.f_contact.data() + 3 * static_cast<std::size_t>(n);
-        plain[0] += mn;
-        for (int k = 0; k < 3; ++k) plain[1 + k] += mn * x[k], plain[4 + k] += mn * v[k];
-        plain[7] += 0.5 * mn * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-        for (int k = 0; k < 3; ++k) plain[8 + k] += f[k];
-      }
+      add_motion_sums(
+          m, m.bodies[b], [&](std::int32_t n) { return owns_node(n); }, plain);
       for (int k = 0; k < kMotionSums; ++k) sums[k].add(plain[k]);
     }
     double largest = -HUGE_VAL;

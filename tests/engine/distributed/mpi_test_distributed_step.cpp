@@ -105,6 +105,27 @@ void expect_same_bits_as_one_process(ElementKernelChoice kernel,
   EXPECT_EQ(a.internal, b.internal);
   EXPECT_EQ(a.external_work, b.external_work);
   EXPECT_GT(a.internal, 0.0);
+  // the bar, cut among the ranks: a history row's figures (exact sums) have one process's
+  // bits; the per-step motions (the ranks' plain sums added) agree to round-off
+  std::vector<BodyState> sampled, whole_sampled, moving;
+  std::vector<double> tension, whole_tension;
+  mine.body_samples(sampled, tension);
+  whole.body_samples(whole_sampled, whole_tension);
+  mine.body_motions(moving);
+  if (c.rank() != 0) return;
+  const BodyState& s = sampled[0];
+  const BodyState& w = whole_sampled[0];
+  const BodyState plain = whole.body_motion(0);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(s.com[k], w.com[k]);
+    EXPECT_EQ(s.vcom[k], w.vcom[k]);
+    EXPECT_NEAR(moving[0].com[k], plain.com[k], 1e-12 * plain.com.norm());
+    EXPECT_NEAR(moving[0].vcom[k], plain.vcom[k], 1e-12 * plain.vcom.norm());
+  }
+  EXPECT_EQ(s.kinetic_energy, w.kinetic_energy);
+  EXPECT_EQ(tension[0], whole_tension[0]);
+  EXPECT_GT(tension[0], 0.0);
+  EXPECT_NEAR(moving[0].kinetic_energy, plain.kinetic_energy, 1e-12 * plain.kinetic_energy);
 }
 
 }  // namespace
