@@ -287,5 +287,33 @@ position = [0.0, 0.0, 0.02]
       << check.output;
 }
 
+// `femdem sweep --launcher 'mpirun -np 2'`: every run of the sweep on 2 ranks, each the run one
+// process makes in a plain sweep.
+TEST(DistributedRunSweep, EachRunOnRanksIsTheOneProcessRun) {
+  const fs::path scene = write_scene("sweep_bar", kElasticBar);
+  const fs::path plain = tmp_dir() / "sweep_plain", ranked = tmp_dir() / "sweep_ranks";
+  const std::string vary =
+      "sweep '" + scene.string() +
+      "' --quiet --no-plot --jobs 1 --vary 'bodies.bar.velocity=[1e-4,0,0],[2e-4,0,0]' "
+      "--set simulation.end_time=2.0 --out '";
+  fs::remove_all(plain);
+  fs::remove_all(ranked);
+  const CommandResult a = femdem(1, vary + plain.string() + "'");
+  ASSERT_EQ(a.code, 0) << a.output;
+  const CommandResult b = femdem(1, vary + ranked.string() + "' --launcher '" + FEMDEM_MPIEXEC +
+                                        " -np 2 --oversubscribe --allow-run-as-root -x "
+                                        "OMP_NUM_THREADS=1 -x ASAN_OPTIONS=detect_leaks=0'");
+  ASSERT_EQ(b.code, 0) << b.output;
+  int runs = 0;
+  for (const auto& entry : fs::directory_iterator(plain)) {
+    if (!fs::exists(entry.path() / "history.csv")) continue;
+    const fs::path other = ranked / entry.path().filename();
+    expect_same_run(entry.path(), other);
+    EXPECT_NE(read_text(other / "run.log").find("in each of 2 ranks"), std::string::npos) << other;
+    ++runs;
+  }
+  EXPECT_EQ(runs, 2);
+}
+
 }  // namespace
 }  // namespace femdem::test

@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -192,6 +193,7 @@ Command add_sweep(CLI::App& app, const std::string& exe) {
   struct State {
     femdem::SweepOptions options;
     bool no_plot = false;
+    std::string launcher;
   };
   auto s = std::make_shared<State>();
   femdem::SweepOptions& o = s->options;
@@ -217,11 +219,19 @@ Command add_sweep(CLI::App& app, const std::string& exe) {
       ->check(CLI::Range(1, 4096));
   sweep->add_option("--threads-per-job", o.threads_per_job, "Threads of each run (default 1)")
       ->check(CLI::Range(1, 4096));
+  sweep->add_option("--launcher", s->launcher,
+                    "Start each run through this command, e.g. 'mpirun -np 2' (each run on 2 MPI "
+                    "ranks; words split at spaces, the first looked up on PATH)");
   sweep->add_flag("--no-plot", s->no_plot, "Do not call tools/plot_sweep.py at the end");
   sweep->add_flag("--quiet", o.quiet, "Print nothing but errors");
   return {sweep, [s, exe] {
             s->options.plot = !s->no_plot;
             s->options.femdem_exe = exe;
+            std::istringstream words(s->launcher);
+            for (std::string w; words >> w;) s->options.launcher.push_back(w);
+            if (!s->launcher.empty() && s->options.launcher.empty())
+              throw femdem::InputError("--launcher is empty (give a command, e.g. 'mpirun -np 2')",
+                                       "", 0, 0, "--launcher");
             s->options.plot_script = femdem::find_plot_script(exe, "plot_sweep.py");
             return femdem::run_sweep(s->options);
           }};

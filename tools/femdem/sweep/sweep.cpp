@@ -333,7 +333,8 @@ int run_sweep(const SweepOptions& opt) {
       }
       // a run of a compaction scene draws its own plots unless the sweep is told not to plot
       if (!opt.plot) args.push_back("--no-plot");
-      const pid_t pid = spawn(args, (rd / "console.txt").string(), false);
+      args.insert(args.begin(), opt.launcher.begin(), opt.launcher.end());
+      const pid_t pid = spawn(args, (rd / "console.txt").string(), !opt.launcher.empty());
       if (pid < 0) {
         r.outcome = Outcome::failed;
         r.exit_code = 1;

@@ -18,8 +18,11 @@ struct SweepOptions {
   int jobs = 0;                        // runs at a time; 0: cores / threads_per_job
   int threads_per_job = 1;             // --threads of each run
   bool quiet = false;
-  bool plot = true;         // false: no plots (--no-plot)
-  std::string femdem_exe;   // the program each run executes (`femdem run ...`)
+  bool plot = true;        // false: no plots (--no-plot)
+  std::string femdem_exe;  // the program each run executes (`femdem run ...`)
+  // Words put before each run's command (--launcher 'mpirun -np 2': each run on 2 MPI ranks),
+  // looked up on PATH; empty: the run is started directly.
+  std::vector<std::string> launcher;
   std::string plot_script;  // tools/plot_sweep.py; empty or missing: no plots (with a note)
 };
 
