@@ -24,6 +24,20 @@ std::vector<MaterialKernel> compile_kernels(const std::vector<MaterialParams>& m
   return out;
 }
 
+// A global element's body and its index in the body, in one process (dist null) or on any rank
+// (whether or not it holds the element).
+std::pair<int, std::int64_t> element_of_body(const Model& m, const Distribution* dist,
+                                             std::int64_t global) {
+  if (!dist) {
+    const int body = m.element_body[global];
+    return {body, global - m.bodies[body].first_element};
+  }
+  const std::vector<std::int32_t>& first = dist->part.body_first_element;
+  const auto body =
+      static_cast<int>(std::upper_bound(first.begin(), first.end(), global) - first.begin() - 1);
+  return {body, global - first[body]};
+}
+
 }  // namespace
 
 Simulation::Simulation(Model model, std::optional<Distribution> distribution)
@@ -201,15 +215,11 @@ void Simulation::compute_forces(double step_dt) {
     bad = dist_->comm->min(bad);
   }
   if (bad != INT64_MAX) {
-    const std::vector<std::int32_t>* first = dist_ ? &dist_->part.body_first_element : nullptr;
-    const auto body = first
-                          ? std::upper_bound(first->begin(), first->end(), bad) - first->begin() - 1
-                          : m.element_body[bad];
+    const auto [body, index] = element_of_body(m, dist_ ? &*dist_ : nullptr, bad);
     const Body& b = m.bodies[body];
     std::ostringstream msg;
-    msg << "element " << (bad - (first ? (*first)[body] : b.first_element)) << " of body '"
-        << b.name << "' inverted (det F <= 0) at t = " << time_ << " s, step " << steps_ << ". "
-        << advice();
+    msg << "element " << index << " of body '" << b.name
+        << "' inverted (det F <= 0) at t = " << time_ << " s, step " << steps_ << ". " << advice();
     throw InstabilityError(msg.str());
   }
   // exact sums (engine/exact_sum.hpp): in parallel, the same bits with any threads and ranks
@@ -313,8 +323,6 @@ void Simulation::check_distributable() const {
   const bool cut = std::find(body_rank.begin(), body_rank.end(), -1) != body_rank.end();
   if (m.bodies.size() > 1)
     missing = "more than one body";
-  else if (s.mass_scaling_time_step > 0.0)
-    missing = "simulation.mass_scaling_time_step";
   else if (s.deformation_damping > 0.0)
     missing = "simulation.deformation_damping";
   else if (cut && m.contact.patch_loads())
@@ -344,6 +352,11 @@ bool Simulation::scale_masses(double element_dt_needed) {
   const bool conserve_momentum = steps_ > 0;
   std::int32_t worst = -1;  // the element that needed the most mass this time
   double worst_added = 0.0;
+  // Every held element is scaled here (an owned node then gets every element's share, in
+  // element order, as in one process); what is counted is what this rank owns, in exact sums
+  // added over the ranks (in one process too, so that the bits agree).
+  ExactSum dissipated[1];
+  std::vector<std::pair<std::int32_t, double>> added_to;  // (body, kg) per owned element
   for (std::int32_t e = 0; e < m.element_count; ++e) {
     double& s = elem_mass_scale_[e];
     const double dt_e = elem_dt_[e] * std::sqrt(s);  // the step bound scales with sqrt(mass)
@@ -354,8 +367,10 @@ bool Simulation::scale_masses(double element_dt_needed) {
     const double added =
         (s_new - s) * m.materials[m.element_material[e]].density * (w[0] + w[1] + w[2] + w[3]);
     s = s_new;
-    body_added_mass_[m.element_body[e]] += added;
-    if (added > worst_added) worst_added = added, worst = e;
+    if (owns_element(e)) {
+      added_to.emplace_back(m.element_body[e], added);
+      if (added > worst_added) worst_added = added, worst = e;
+    }
     const Tet10& c = m.conn[e];
     for (int a = 0; a < 10; ++a) {
       const std::int32_t n = c[a];
@@ -368,12 +383,34 @@ bool Simulation::scale_masses(double element_dt_needed) {
         accel_[i] *= ratio;                // the same force now moves more mass
         if (conserve_momentum) {
           // a free node gaining mass keeps its momentum and gives up kinetic energy
-          mass_scaling_dissipation_ += 0.5 * m_old * m.v[i] * m.v[i] * (1.0 - ratio);
+          if (owns_node(n)) dissipated[0].add(0.5 * m_old * m.v[i] * m.v[i] * (1.0 - ratio));
           m.v[i] *= ratio;
         }
       }
       m.mass[n] = m_new;
     }
+  }
+  reduce(dissipated);
+  mass_scaling_dissipation_ += dissipated[0].value();
+  if (dist_ ? !dist_->comm->all(added_to.empty()) : !added_to.empty()) {
+    std::vector<ExactSum> per_body(m.bodies.size());
+    for (const auto& [b, kg] : added_to) per_body[b].add(kg);
+    reduce(per_body);
+    for (std::size_t b = 0; b < m.bodies.size(); ++b) body_added_mass_[b] += per_body[b].value();
+  }
+  // the element that needed the most, by global number (the lowest of equals, as one
+  // process's first), and its own step
+  std::int64_t worst_global = worst >= 0 ? (dist_ ? dist_->part.elements[worst] : worst) : -1;
+  double worst_dt = worst >= 0 ? elem_dt_[worst] : HUGE_VAL;
+  if (dist_) {
+    const double most = -reduce_min(-worst_added);
+    const std::int64_t mine = worst >= 0 && worst_added == most ? worst_global : INT64_MAX;
+    const std::int64_t first = dist_->comm->min(mine);
+    worst_global = first == INT64_MAX ? -1 : first;
+    worst_dt = reduce_min(first != INT64_MAX && mine == first ? worst_dt : HUGE_VAL);
+    // a ghost node got only its held elements' shares: its owner's mass (the assembled
+    // estimate reads the ghosts' masses)
+    if (worst_global >= 0) dist_->comm->exchange(dist_->part, m.mass.data(), 1);
   }
   // At the start the mesh is what the user gave (the run log reports the added mass); later,
   // a body gaining a large share of its mass has an element being crushed flat, whose nodes
@@ -381,10 +418,10 @@ bool Simulation::scale_masses(double element_dt_needed) {
   // The limit counts what was added after the start only (docs/SCENES.md).
   if (!conserve_momentum) {
     body_added_at_start_ = body_added_mass_;
-    return worst >= 0;
+    return worst_global >= 0;
   }
-  if (worst < 0) return false;
-  const std::int32_t body = m.element_body[worst];
+  if (worst_global < 0) return false;
+  const auto [body, index] = element_of_body(m, dist_ ? &*dist_ : nullptr, worst_global);
   const Body& b = m.bodies[body];
   const double added = body_added_mass_[body] - body_added_at_start_[body];
   if (added <= m.settings.mass_scaling_limit * b.mass) return true;
@@ -392,8 +429,8 @@ bool Simulation::scale_masses(double element_dt_needed) {
   msg << "mass scaling has added " << added << " kg to body '" << b.name << "' since the start ("
       << 100.0 * added / b.mass << " % of its mass, more than simulation.mass_scaling_limit = "
       << m.settings.mass_scaling_limit << ") at t = " << time_ << " s, step " << steps_
-      << ": element " << (worst - b.first_element) << " of the body is being crushed (its own "
-      << "stable step fell to " << elem_dt_[worst] << " s). The results would no longer be "
+      << ": element " << index << " of the body is being crushed (its own "
+      << "stable step fell to " << worst_dt << " s). The results would no longer be "
       << "physical. Stiffen the contact (penalty_factor), lower the impact speed, refine the "
       << "mesh, or raise simulation.mass_scaling_limit if this much added mass is acceptable.";
   throw InstabilityError(msg.str());

@@ -159,6 +159,18 @@ velocity = [0.0, 0.0, -5.0]
 )" + std::string(kSquareDieSideWalls) +
                               R"()";
 
+// The coarse Taylor bar with selective mass scaling to a step above its stable one: elements
+// are scaled at the start and again as the foot is crushed (the added mass summed over the
+// ranks, ghost masses from their owners).
+const std::string kTaylorBarScaled = [] {
+  std::string t = kTaylorBar;
+  const std::string at = "[simulation]\n";
+  t.insert(
+      t.find(at) + at.size(),
+      "mass_scaling_time_step = 6e-8\nmass_scaling_limit = 1.0\nstable_step = \"assembled\"\n");
+  return t;
+}();
+
 struct SceneCase {
   const char* text;
   const char* half_time;  // where the resume tests stop the first run
@@ -169,6 +181,7 @@ SceneCase scene_case(const std::string& name) {
   if (name == "elastic_bar") return {kElasticBar, "3.0", "6.0"};
   if (name == "plastic_bar") return {kPlasticBar, "1e-4", "2e-4"};
   if (name == "taylor_bar") return {kTaylorBar, "8e-6", "16e-6"};
+  if (name == "taylor_bar_mass_scaling") return {kTaylorBarScaled.c_str(), "8e-6", "16e-6"};
   return {kDiePress.c_str(), "6e-5", "1.2e-4"};
 }
 
@@ -246,7 +259,8 @@ TEST_P(DistributedRun, ResumesOnAnotherNumberOfRanks) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Bars, DistributedRun, ::testing::Values("elastic_bar", "plastic_bar"));
-INSTANTIATE_TEST_SUITE_P(Walls, DistributedRun, ::testing::Values("taylor_bar", "die_press"));
+INSTANTIATE_TEST_SUITE_P(Walls, DistributedRun,
+                         ::testing::Values("taylor_bar", "die_press", "taylor_bar_mass_scaling"));
 
 TEST(DistributedRunRefusal, WhatRanksCannotDoYetExitsTwoFromEveryRankWithOneMessage) {
   const fs::path scene = write_scene("two_bodies", R"(title = "two bodies"
