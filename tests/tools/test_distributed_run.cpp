@@ -294,6 +294,29 @@ position = [0.0, 0.0, 0.02]
   ASSERT_NE(first, std::string::npos) << c.output;
   EXPECT_EQ(c.output.find(needle, first + 1), std::string::npos) << c.output;
   EXPECT_FALSE(fs::exists(out / "results.h5"));
+  // a scene too small for the ranks: two elements on 3 ranks
+  const fs::path tiny = write_scene("two_elements", (std::string(R"(title = "two elements"
+[simulation]
+end_time = 1e-6
+
+[[materials]]
+name = "metal"
+model = "elastic"
+density = 2700.0
+youngs_modulus = 70e9
+poisson_ratio = 0.3
+
+[[bodies]]
+name = "a"
+material = "metal"
+mesh = { file = ")") + FEMDEM_SOURCE_DIR + "/tests/data/two_tet10_v41.msh\" }\n")
+                                                        .c_str());
+  const CommandResult small = run(3, tiny, tmp_dir() / "two_elements");
+  EXPECT_EQ(small.code, 2) << small.output;
+  const std::string split = "cannot be split among 3 ranks";
+  const auto at = small.output.find(split);
+  ASSERT_NE(at, std::string::npos) << small.output;
+  EXPECT_EQ(small.output.find(split, at + 1), std::string::npos) << small.output;
   // commands other than run and resume run as one process
   const CommandResult check = femdem(2, "check '" + scene.string() + "'");
   EXPECT_EQ(check.code, 2) << check.output;
