@@ -206,18 +206,23 @@ void WallContact::compute_with(Model& m, double step_dt, std::vector<double>& f,
 
 void WallContact::reduce_deepest() {
   if (!dist_) return;
-  // the deepest node over the ranks; its body as one process finds it: the first (lowest
-  // boundary node, so lowest body) among those as deep
+  // the deepest node over the ranks, for every wall in two calls; its body as one process finds
+  // it: the first (lowest boundary node, so lowest body) among those as deep
   const Communicator& comm = *dist_->comm;
-  for (std::size_t wi = 0; wi < penetration_.size(); ++wi) {
-    penetration_[wi] = -comm.min(-penetration_[wi]);
-    const double deepest = -comm.min(-penetration_per_size_[wi]);
-    const std::int64_t mine = penetration_per_size_[wi] == deepest && deepest_body_[wi] >= 0
-                                  ? deepest_body_[wi]
-                                  : INT64_MAX;
-    const std::int64_t body = comm.min(mine);
-    penetration_per_size_[wi] = deepest;
-    deepest_body_[wi] = body == INT64_MAX ? -1 : static_cast<int>(body);
+  const std::size_t nw = penetration_.size();
+  std::vector<double> deepest(2 * nw);  // negated: the ranks take minima
+  for (std::size_t wi = 0; wi < nw; ++wi)
+    deepest[wi] = -penetration_[wi], deepest[nw + wi] = -penetration_per_size_[wi];
+  comm.min(deepest);
+  std::vector<double> body(nw, HUGE_VAL);  // (body indices are exact in a double)
+  for (std::size_t wi = 0; wi < nw; ++wi)
+    if (deepest_body_[wi] >= 0 && penetration_per_size_[wi] == -deepest[nw + wi])
+      body[wi] = deepest_body_[wi];
+  comm.min(body);
+  for (std::size_t wi = 0; wi < nw; ++wi) {
+    penetration_[wi] = -deepest[wi];
+    penetration_per_size_[wi] = -deepest[nw + wi];
+    deepest_body_[wi] = body[wi] == HUGE_VAL ? -1 : static_cast<int>(body[wi]);
   }
 }
 

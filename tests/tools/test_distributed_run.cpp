@@ -189,7 +189,7 @@ fs::path tmp_dir() {
   return fs::path(FEMDEM_TEST_TMP) / "distributed_run";
 }
 
-fs::path write_scene(const std::string& name, const char* text) {
+fs::path write_scene(const std::string& name, const std::string& text) {
   fs::create_directories(tmp_dir());
   const fs::path p = tmp_dir() / (name + ".toml");
   std::ofstream(p) << text;
@@ -262,18 +262,28 @@ INSTANTIATE_TEST_SUITE_P(Bars, DistributedRun, ::testing::Values("elastic_bar", 
 INSTANTIATE_TEST_SUITE_P(Walls, DistributedRun,
                          ::testing::Values("taylor_bar", "die_press", "taylor_bar_mass_scaling"));
 
-TEST(DistributedRunRefusal, WhatRanksCannotDoYetExitsTwoFromEveryRankWithOneMessage) {
-  const fs::path scene = write_scene("two_bodies", R"(title = "two bodies"
-[simulation]
-end_time = 1e-5
-
-[[materials]]
+const char* const kMetal = R"([[materials]]
 name = "metal"
 model = "elastic"
 density = 2700.0
 youngs_modulus = 70e9
 poisson_ratio = 0.3
+)";
 
+// Exit code 2 and the message once (rank 0 reports what every rank finds).
+void expect_refused_once(const CommandResult& c, const std::string& message) {
+  EXPECT_EQ(c.code, 2) << c.output;
+  const auto at = c.output.find(message);
+  ASSERT_NE(at, std::string::npos) << c.output;
+  EXPECT_EQ(c.output.find(message, at + 1), std::string::npos) << c.output;
+}
+
+TEST(DistributedRunRefusal, WhatRanksCannotDoYetExitsTwoFromEveryRankWithOneMessage) {
+  const fs::path scene = write_scene("two_bodies", R"(title = "two bodies"
+[simulation]
+end_time = 1e-5
+
+)" + std::string(kMetal) + R"(
 [[bodies]]
 name = "a"
 material = "metal"
@@ -287,36 +297,22 @@ position = [0.0, 0.0, 0.02]
 )");
   const fs::path out = tmp_dir() / "two_bodies";
   const CommandResult c = run(2, scene, out);
-  EXPECT_EQ(c.code, 2) << c.output;
   // one message, from rank 0, naming what is missing
-  const std::string needle = "more than one body";
-  const auto first = c.output.find(needle);
-  ASSERT_NE(first, std::string::npos) << c.output;
-  EXPECT_EQ(c.output.find(needle, first + 1), std::string::npos) << c.output;
+  expect_refused_once(c, "more than one body");
   EXPECT_FALSE(fs::exists(out / "results.h5"));
   // a scene too small for the ranks: two elements on 3 ranks
   const fs::path tiny = write_scene("two_elements", (std::string(R"(title = "two elements"
 [simulation]
 end_time = 1e-6
 
-[[materials]]
-name = "metal"
-model = "elastic"
-density = 2700.0
-youngs_modulus = 70e9
-poisson_ratio = 0.3
-
+)" + std::string(kMetal) + R"(
 [[bodies]]
 name = "a"
 material = "metal"
 mesh = { file = ")") + FEMDEM_SOURCE_DIR + "/tests/data/two_tet10_v41.msh\" }\n")
                                                         .c_str());
   const CommandResult small = run(3, tiny, tmp_dir() / "two_elements");
-  EXPECT_EQ(small.code, 2) << small.output;
-  const std::string split = "cannot be split among 3 ranks";
-  const auto at = small.output.find(split);
-  ASSERT_NE(at, std::string::npos) << small.output;
-  EXPECT_EQ(small.output.find(split, at + 1), std::string::npos) << small.output;
+  expect_refused_once(small, "cannot be split among 3 ranks");
   // commands other than run and resume run as one process
   const CommandResult check = femdem(2, "check '" + scene.string() + "'");
   EXPECT_EQ(check.code, 2) << check.output;
