@@ -22,7 +22,11 @@ using TetPositions = std::array<std::array<double, 3>, 4>;
 struct PairInput {
   const TetPositions* corners_a = nullptr;  // positions of tet_a's corners, now
   const TetPositions* corners_b = nullptr;
-  const double* v = nullptr;                     // node velocities (half step), 3 per node
+  // node velocities (half step), 3 per node: tet_a's corners index v_a, tet_b's v_b (the same
+  // array in one process; on a rank of a distributed run a tet of another rank's body reads
+  // the velocities received for it)
+  const double* v_a = nullptr;
+  const double* v_b = nullptr;
   std::array<std::int32_t, 4> tet_a{}, tet_b{};  // corner nodes
   double penalty = 0.0;   // Pa: [contact] penalty_factor x E of the stiffer side
   double friction = 0.0;  // Coulomb coefficient of the two bodies

@@ -112,8 +112,8 @@ void PenaltyPotentialLaw::evaluate(const PairInput& in, PairSpring& spring, Pair
   const auto la = barycentric(a, c), lb = barycentric(b, c);
   Vec3 va = Vec3::Zero(), vb = Vec3::Zero();
   for (int q = 0; q < 4; ++q) {
-    va += la[q] * Vec3(in.v[3 * ta[q]], in.v[3 * ta[q] + 1], in.v[3 * ta[q] + 2]);
-    vb += lb[q] * Vec3(in.v[3 * tb[q]], in.v[3 * tb[q] + 1], in.v[3 * tb[q] + 2]);
+    va += la[q] * Vec3(in.v_a[3 * ta[q]], in.v_a[3 * ta[q] + 1], in.v_a[3 * ta[q] + 2]);
+    vb += lb[q] * Vec3(in.v_b[3 * tb[q]], in.v_b[3 * tb[q] + 1], in.v_b[3 * tb[q] + 2]);
   }
   const Vec3 v_rel = vb - va;
   const Vec3 du = in.step_dt * (v_rel - v_rel.dot(n) * n);

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 
 namespace femdem {
@@ -41,60 +42,108 @@ double centroid_line_gap(const TetPositions& a, const TetPositions& b) {
 
 }  // namespace
 
-BodyContact::BodyContact(const Model& m) : verlet_(buffer_for(m)) {
+BodyContact::BodyContact(const Model& m, const Distribution* dist)
+    : dist_(dist), verlet_(buffer_for(m)) {
   const std::optional<BodyPairLaw> law = body_pair_law_named(m.contact.law);
   if (!law) throw std::invalid_argument("unknown contact law '" + std::string(m.contact.law) + "'");
   law_ = *law;
+  // the whole model's sub-tets (a rank's part holds some of them)
+  if (dist_) {
+    const LocalPart& part = dist_->part;
+    corners_ = part.contact_tets;
+    tet_body_ = part.contact_tet_body;
+    tet_depth_ = part.contact_tet_depth;
+    here_.assign(corners_.size(), 0);
+    for (std::size_t t = 0; t < corners_.size(); ++t)
+      if (const std::int32_t lt = part.contact_tet_local[t]; lt >= 0) {
+        corners_[t] = m.contact_tets[lt];
+        here_[t] = 1;
+      }
+  } else {
+    corners_ = m.contact_tets;
+    tet_body_ = m.contact_tet_body;
+    tet_depth_ = m.contact_tet_depth;
+    here_.assign(corners_.size(), 1);
+  }
   // two bodies that can move towards each other
   int with_tets = 0, movable = 0;
   std::vector<char> has_tets(m.bodies.size(), 0);
-  for (std::int32_t b : m.contact_tet_body) has_tets[b] = 1;
+  for (std::int32_t b : tet_body_) has_tets[b] = 1;
   for (std::size_t b = 0; b < m.bodies.size(); ++b) {
     with_tets += has_tets[b];
     movable += has_tets[b] && !m.bodies[b].fixed;
   }
   active_ = with_tets >= 2 && movable >= 1;
   if (!active_) return;
+  const std::size_t nt = corners_.size();
+  mine_.assign(nt, 0);
+  is_present_.assign(nt, 0);
+  for (std::size_t t = 0; t < nt; ++t) {
+    if (!here_[t]) continue;
+    held_.push_back(static_cast<std::uint32_t>(t));
+    for (std::int32_t n : corners_[t]) mine_[t] = mine_[t] || owns(n);
+  }
   std::vector<char> used(m.node_count, 0);
   for (const auto& t : m.contact_tets)
     for (std::int32_t n : t) used[n] = 1;
   for (std::int32_t n = 0; n < m.node_count; ++n)
     if (used[n]) nodes_.push_back(n);
   node_positions_.resize(nodes_.size());
-  boxes_.resize(m.contact_tets.size());
-  tet_boxes_.resize(m.contact_tets.size());
-  tet_positions_.resize(m.contact_tets.size());
-  groups_.assign(m.contact_tet_body.begin(), m.contact_tet_body.end());
+  tet_boxes_.resize(nt);
+  tet_positions_.resize(nt);
   node_stiffness_.assign(m.node_count, 0.0);
   node_flat_stiffness_per_penalty_.assign(m.node_count, 0.0);
   node_contact_stiffness_.assign(m.node_count, 0.0);
   for (const SurfaceNode& s : m.surface)
     node_flat_stiffness_per_penalty_[s.node] = 16.0 * s.area / s.depth;
+  if (dist_) {
+    // the sub-tets around each global node (which foreign sub-tets have all their corners)
+    const LocalPart& part = dist_->part;
+    node_tet_offset_.assign(static_cast<std::size_t>(part.global_node_count) + 1, 0);
+    for (const auto& t : part.contact_tets)
+      for (std::int32_t n : t) ++node_tet_offset_[n + 1];
+    for (std::size_t n = 0; n + 1 < node_tet_offset_.size(); ++n)
+      node_tet_offset_[n + 1] += node_tet_offset_[n];
+    node_tets_.resize(node_tet_offset_.back());
+    std::vector<std::int32_t> at(node_tet_offset_.begin(), node_tet_offset_.end() - 1);
+    for (std::size_t t = 0; t < nt; ++t)
+      for (std::int32_t n : part.contact_tets[t])
+        node_tets_[at[n]++] = static_cast<std::int32_t>(t);
+  }
 }
 
 void BodyContact::update_candidates(const Model& m) {
+  // the margin boxes of the sub-tets present (from this step's corners: update_tet_boxes)
   const double margin = verlet_.margin();
-  for (std::size_t t = 0; t < m.contact_tets.size(); ++t) {
-    Aabb& b = boxes_[t];
+  if (!dist_) present_ = held_;
+  boxes_.resize(present_.size());
+  groups_.resize(present_.size());
+  for (std::size_t q = 0; q < present_.size(); ++q) {
+    const std::uint32_t t = present_[q];
+    Aabb& b = boxes_[q];
     b.lo = {HUGE_VAL, HUGE_VAL, HUGE_VAL};
     b.hi = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-    for (std::int32_t n : m.contact_tets[t])
+    for (const auto& c : tet_positions_[t])
       for (int k = 0; k < 3; ++k) {
-        b.lo[k] = std::min(b.lo[k], m.x[3 * n + k] - margin);
-        b.hi[k] = std::max(b.hi[k], m.x[3 * n + k] + margin);
+        b.lo[k] = std::min(b.lo[k], c[k] - margin);
+        b.hi[k] = std::max(b.hi[k], c[k] + margin);
       }
+    groups_[q] = tet_body_[t];
   }
   broadphase_.find_pairs(boxes_, groups_, found_);
   ++broadphase_runs_;
   verlet_.record(node_positions_);
 
-  // the new list, carrying each surviving pair's friction spring over (both lists are sorted)
+  // the new list, carrying each surviving pair's friction spring over (both lists are sorted;
+  // present_ is ascending, so the found pairs are in the whole model's order)
   std::swap(pairs_, old_pairs_);
   pairs_.clear();
   std::size_t o = 0;
   const double buffer = verlet_.buffer();
-  for (const CandidatePair& c : found_) {
-    const int ba = m.contact_tet_body[c.i], bb = m.contact_tet_body[c.j];
+  for (const CandidatePair& found : found_) {
+    const CandidatePair c{present_[found.i], present_[found.j]};
+    if (!mine_[c.i] && !mine_[c.j]) continue;  // (a rank's: no node of it is owned here)
+    const int ba = tet_body_[c.i], bb = tet_body_[c.j];
     if (m.bodies[ba].fixed && m.bodies[bb].fixed) continue;
     while (o < old_pairs_.size() &&
            (old_pairs_[o].i < c.i || (old_pairs_[o].i == c.i && old_pairs_[o].j < c.j)))
@@ -110,21 +159,26 @@ void BodyContact::update_candidates(const Model& m) {
     if (kept) p.spring = old_pairs_[o].spring;
     pairs_.push_back(p);
   }
-  // each candidate node's flat-contact stiffness, with the stiffest penalty of its pairs
+  // each candidate node's flat-contact stiffness, with the stiffest penalty of its pairs (the
+  // nodes here: a rank has every pair of the nodes it owns)
   for (const Pair& p : old_pairs_)
     for (std::uint32_t t : {p.i, p.j})
-      for (std::int32_t n : m.contact_tets[t]) node_contact_stiffness_[n] = 0.0;
+      if (here_[t])
+        for (std::int32_t n : corners_[t]) node_contact_stiffness_[n] = 0.0;
   for (const Pair& p : pairs_)
     for (std::uint32_t t : {p.i, p.j})
-      for (std::int32_t n : m.contact_tets[t])
-        node_contact_stiffness_[n] =
-            std::max(node_contact_stiffness_[n], p.penalty * node_flat_stiffness_per_penalty_[n]);
+      if (here_[t])
+        for (std::int32_t n : corners_[t])
+          node_contact_stiffness_[n] =
+              std::max(node_contact_stiffness_[n], p.penalty * node_flat_stiffness_per_penalty_[n]);
   near_k_over_m_ = 0.0;
   for (const Pair& p : pairs_)
     for (std::uint32_t t : {p.i, p.j})
-      for (std::int32_t n : m.contact_tets[t])
-        if (m.mass[n] > 0.0 && !held(m, n))
-          near_k_over_m_ = std::max(near_k_over_m_, node_contact_stiffness_[n] / m.mass[n]);
+      if (here_[t])
+        for (std::int32_t n : corners_[t])
+          if (owns(n) && m.mass[n] > 0.0 && !held(m, n))
+            near_k_over_m_ = std::max(near_k_over_m_, node_contact_stiffness_[n] / m.mass[n]);
+  if (dist_) near_k_over_m_ = -dist_->comm->min(-near_k_over_m_);
   // A pair that drops out of the list is far apart: its spring was released when it stopped
   // touching (evaluate() zeroes it then), so nothing is lost here.
   results_.resize(pairs_.size());
@@ -138,16 +192,17 @@ void BodyContact::update_candidates(const Model& m) {
   active_tets_.erase(std::unique(active_tets_.begin(), active_tets_.end()), active_tets_.end());
 }
 
-void BodyContact::update_tet_boxes(const Model& m, bool all) {
-  const auto nt = static_cast<std::int64_t>(all ? m.contact_tets.size() : active_tets_.size());
+void BodyContact::update_tet_boxes(const Model& m, const std::vector<std::uint32_t>& tets) {
+  const auto nt = static_cast<std::int64_t>(tets.size());
 #pragma omp parallel for schedule(static) if (nt > kParallelMinTets)
   for (std::int64_t q = 0; q < nt; ++q) {
-    const std::size_t t = all ? static_cast<std::size_t>(q) : active_tets_[q];
+    const std::uint32_t t = tets[q];
     Aabb& b = tet_boxes_[t];
     TetPositions& p = tet_positions_[t];
-    const auto& c = m.contact_tets[t];
+    const auto& c = corners_[t];
+    const double* x = here_[t] ? m.x.data() : foreign_x_.data();
     for (int k = 0; k < 4; ++k)
-      for (int d = 0; d < 3; ++d) p[k][d] = m.x[3 * c[k] + d];
+      for (int d = 0; d < 3; ++d) p[k][d] = x[3 * c[k] + d];
     for (int d = 0; d < 3; ++d) {
       b.lo[d] = std::min(std::min(p[0][d], p[1][d]), std::min(p[2][d], p[3][d]));
       b.hi[d] = std::max(std::max(p[0][d], p[1][d]), std::max(p[2][d], p[3][d]));
@@ -158,7 +213,6 @@ void BodyContact::update_tet_boxes(const Model& m, bool all) {
 template <class Law>
 void BodyContact::evaluate_pairs(const Model& m, double step_dt) {
   PairInput in;
-  in.v = m.v.data();
   in.step_dt = step_dt;
   const auto np = static_cast<std::int64_t>(pairs_.size());
 #pragma omp parallel for schedule(dynamic, 256) if (pairs_.size() > kParallelMinPairs) \
@@ -178,8 +232,10 @@ void BodyContact::evaluate_pairs(const Model& m, double step_dt) {
     }
     in.corners_a = &tet_positions_[p.i];
     in.corners_b = &tet_positions_[p.j];
-    in.tet_a = m.contact_tets[p.i];
-    in.tet_b = m.contact_tets[p.j];
+    in.v_a = here_[p.i] ? m.v.data() : foreign_v_.data();
+    in.v_b = here_[p.j] ? m.v.data() : foreign_v_.data();
+    in.tet_a = corners_[p.i];
+    in.tet_b = corners_[p.j];
     in.penalty = p.penalty;
     in.friction = p.friction;
     PairOutcome& r = results_[q];
@@ -188,14 +244,14 @@ void BodyContact::evaluate_pairs(const Model& m, double step_dt) {
   }
 }
 
-void BodyContact::gather_patches(const Model& m) {
+void BodyContact::gather_patches() {
   // Sorted by body pair, then by the pairs' own order: the sums do not depend on threads.
   patches_.clear();
   patch_keys_.clear();
   for (std::size_t q = 0; q < pairs_.size(); ++q) {
     if (!evaluated_[q] || !results_[q].touching) continue;
-    std::uint64_t a = static_cast<std::uint32_t>(m.contact_tet_body[pairs_[q].i]);
-    std::uint64_t b = static_cast<std::uint32_t>(m.contact_tet_body[pairs_[q].j]);
+    std::uint64_t a = static_cast<std::uint32_t>(tet_body_[pairs_[q].i]);
+    std::uint64_t b = static_cast<std::uint32_t>(tet_body_[pairs_[q].j]);
     patch_keys_.emplace_back(std::min(a, b) << 32 | std::max(a, b), static_cast<std::uint32_t>(q));
   }
   std::sort(patch_keys_.begin(), patch_keys_.end());
@@ -211,7 +267,7 @@ void BodyContact::gather_patches(const Model& m) {
     const PairOutcome& r = results_[q];
     const Vec3 fb(r.normal_force_b[0], r.normal_force_b[1], r.normal_force_b[2]);
     // tet j's body receives fb; the patch's body a is the smaller index
-    const bool j_is_a = m.contact_tet_body[pairs_[q].j] == p.body_a;
+    const bool j_is_a = tet_body_[pairs_[q].j] == p.body_a;
     p.force_on_a += j_is_a ? fb : Vec3(-fb);
     const double w = fb.norm();
     p.weighted_point += w * Vec3(r.centroid[0], r.centroid[1], r.centroid[2]);
@@ -225,65 +281,328 @@ void BodyContact::compute(const Model& m, double step_dt, std::vector<double>& f
   touching_ = 0;
   deepest_bodies_ = {-1, -1};
   if (!active_) return;
+  if (dist_) refresh_foreign(m);
   for (std::size_t q = 0; q < nodes_.size(); ++q) {
     const std::int32_t n = nodes_[q];
     node_positions_[q] = Vec3(m.x[3 * n], m.x[3 * n + 1], m.x[3 * n + 2]);
   }
+  // (on every rank when on any: each rank's list stays the one process's pairs of its nodes)
+  bool rebuild = verlet_.needs_rebuild(node_positions_);
+  if (dist_) rebuild = !dist_->comm->all(!rebuild);
   // every sub-tet's corners when the list is rebuilt (its filter needs them), else only those
   // of the listed pairs
-  if (verlet_.needs_rebuild(node_positions_)) {
-    update_tet_boxes(m, true);
+  if (rebuild) {
+    update_tet_boxes(m, held_);
+    if (dist_) fetch_near(m);
     update_candidates(m);
+    if (dist_) subscribe(m);
   } else {
-    update_tet_boxes(m, false);
+    update_tet_boxes(m, active_tets_);
   }
-  max_k_over_m_ = near_k_over_m_;
 
   std::visit([&]<class Law>(const Law&) { evaluate_pairs<Law>(m, step_dt); }, law_);
 
-  // sum in pair order: the same bits with any number of threads
-  for (std::size_t q = 0; q < pairs_.size(); ++q) {
-    if (!evaluated_[q]) continue;
-    const PairOutcome& r = results_[q];
-    dissipated_ += r.dissipated;
-    if (!r.touching) continue;
-    ++touching_;
-    energy_ += r.energy;
-    max_penetration_ = std::max(max_penetration_, r.penetration);
-    const double per_size = r.penetration / std::min(m.contact_tet_depth[pairs_[q].i],
-                                                     m.contact_tet_depth[pairs_[q].j]);
-    if (per_size > max_penetration_per_size_) {
-      max_penetration_per_size_ = per_size;
-      deepest_bodies_ = {m.contact_tet_body[pairs_[q].i], m.contact_tet_body[pairs_[q].j]};
-    }
-    const auto& ta = m.contact_tets[pairs_[q].i];
-    const auto& tb = m.contact_tets[pairs_[q].j];
-    for (int c = 0; c < 4; ++c)
-      for (int k = 0; k < 3; ++k) {
-        f[3 * ta[c] + k] += r.force[3 * c + k];
-        f[3 * tb[c] + k] += r.force[12 + 3 * c + k];
-      }
-    for (int c = 0; c < 4; ++c) {
-      node_stiffness_[ta[c]] += r.stiffness;
-      node_stiffness_[tb[c]] += r.stiffness;
-    }
-  }
-  pair_evaluations_ += static_cast<std::int64_t>(pairs_.size());
-  touching_evaluations_ += static_cast<std::int64_t>(touching_);
-  if (collect_patches_) gather_patches(m);
+  // forces summed in pair order: the same bits with any number of threads (and, on a rank,
+  // for the nodes it owns, which are in every pair they are in)
   for (std::size_t q = 0; q < pairs_.size(); ++q) {
     if (!evaluated_[q] || !results_[q].touching) continue;
-    for (const auto* t : {&m.contact_tets[pairs_[q].i], &m.contact_tets[pairs_[q].j]})
-      for (std::int32_t n : *t) {
-        if (node_stiffness_[n] > 0.0 && m.mass[n] > 0.0 && !held(m, n))
+    const PairOutcome& r = results_[q];
+    for (int side = 0; side < 2; ++side) {
+      const std::uint32_t t = side == 0 ? pairs_[q].i : pairs_[q].j;
+      if (!here_[t]) continue;
+      const auto& c = corners_[t];
+      for (int k = 0; k < 4; ++k) {
+        for (int d = 0; d < 3; ++d) f[3 * c[k] + d] += r.force[12 * side + 3 * k + d];
+        node_stiffness_[c[k]] += r.stiffness;
+      }
+    }
+  }
+  sum_outcomes(m);
+  if (collect_patches_) gather_patches();
+}
+
+void BodyContact::sum_outcomes(const Model& m) {
+  enum { kEnergy, kFriction, kTouching, kListed, kForeign, kSums };
+  ExactSum sums[kSums];
+  sums[kForeign].add(static_cast<double>(foreign_nodes_.size()));
+  // the deepest pair per element size; among equals the lowest pair of bodies
+  auto body_key = [](int a, int b) { return static_cast<double>(a) * 0x1p26 + b; };
+  double deepest_key = HUGE_VAL;
+  for (std::size_t q = 0; q < pairs_.size(); ++q) {
+    const Pair& p = pairs_[q];
+    if (!counts(p)) continue;
+    sums[kListed].add(1.0);
+    if (!evaluated_[q]) continue;
+    const PairOutcome& r = results_[q];
+    sums[kFriction].add(r.dissipated);
+    if (!r.touching) continue;
+    sums[kTouching].add(1.0);
+    sums[kEnergy].add(r.energy);
+    max_penetration_ = std::max(max_penetration_, r.penetration);
+    const double per_size = r.penetration / std::min(tet_depth_[p.i], tet_depth_[p.j]);
+    const double key = body_key(tet_body_[p.i], tet_body_[p.j]);
+    if (per_size > max_penetration_per_size_ ||
+        (per_size > 0.0 && per_size == max_penetration_per_size_ && key < deepest_key)) {
+      max_penetration_per_size_ = per_size;
+      deepest_key = key;
+    }
+  }
+  // the stable step's k / m over the nodes this rank owns (their stiffness is whole here)
+  max_k_over_m_ = near_k_over_m_;
+  for (std::size_t q = 0; q < pairs_.size(); ++q) {
+    if (!evaluated_[q] || !results_[q].touching) continue;
+    for (std::uint32_t t : {pairs_[q].i, pairs_[q].j}) {
+      if (!here_[t]) continue;
+      for (std::int32_t n : corners_[t]) {
+        if (node_stiffness_[n] > 0.0 && owns(n) && m.mass[n] > 0.0 && !held(m, n))
           max_k_over_m_ = std::max(max_k_over_m_, node_stiffness_[n] / m.mass[n]);
         node_stiffness_[n] = 0.0;
       }
+    }
   }
+  if (dist_) {
+    const Communicator& comm = *dist_->comm;
+    comm.sum(sums);
+    double maxima[3] = {-max_k_over_m_, -max_penetration_, -max_penetration_per_size_};
+    comm.min(maxima);
+    const double mine = max_penetration_per_size_;
+    max_k_over_m_ = -maxima[0];
+    max_penetration_ = -maxima[1];
+    max_penetration_per_size_ = -maxima[2];
+    deepest_key = comm.min(mine == max_penetration_per_size_ ? deepest_key : HUGE_VAL);
+  }
+  energy_ = sums[kEnergy].value();
+  dissipated_ = sums[kFriction].value();
+  touching_ = static_cast<std::size_t>(sums[kTouching].value());
+  pair_evaluations_ += static_cast<std::int64_t>(sums[kListed].value());
+  touching_evaluations_ += static_cast<std::int64_t>(touching_);
+  foreign_received_ += static_cast<std::int64_t>(sums[kForeign].value());
+  ++computes_;
+  if (max_penetration_per_size_ > 0.0 && deepest_key < HUGE_VAL) {
+    const auto a = static_cast<std::int64_t>(deepest_key * 0x1p-26);
+    deepest_bodies_ = {static_cast<int>(a), static_cast<int>(deepest_key - a * 0x1p26)};
+  }
+}
+
+namespace {
+
+// A box sent between ranks at a rebuild: the margin box of a rank's sub-tets of one body.
+struct Region {
+  std::int32_t body = 0;
+  Aabb box;
+};
+
+template <class T>
+void append_bytes(std::vector<std::byte>& out, const T* data, std::size_t count) {
+  const auto* b = reinterpret_cast<const std::byte*>(data);
+  out.insert(out.end(), b, b + count * sizeof(T));
+}
+
+template <class T>
+std::vector<T> read_bytes(const std::vector<std::byte>& in, std::size_t& at, std::size_t count) {
+  std::vector<T> v(count);
+  std::memcpy(v.data(), in.data() + at, count * sizeof(T));
+  at += count * sizeof(T);
+  return v;
+}
+
+Aabb grown(const Aabb& b, double margin) {
+  Aabb g = b;
+  for (int k = 0; k < 3; ++k) g.lo[k] -= margin, g.hi[k] += margin;
+  return g;
+}
+
+}  // namespace
+
+void BodyContact::fetch_near(const Model& m) {
+  const Communicator& comm = *dist_->comm;
+  const LocalPart& part = dist_->part;
+  const int ranks = comm.size(), me = comm.rank();
+  const double margin = verlet_.margin();
+  // 1. this rank's regions: per body, the margin box of its sub-tets with an owned node
+  std::vector<Region> mine;
+  std::vector<std::int32_t> region_of(m.bodies.size(), -1);
+  for (std::uint32_t t : held_) {
+    if (!mine_[t]) continue;
+    const Aabb b = grown(tet_boxes_[t], margin);
+    std::int32_t& r = region_of[tet_body_[t]];
+    if (r < 0) {
+      r = static_cast<std::int32_t>(mine.size());
+      mine.push_back({tet_body_[t], b});
+      continue;
+    }
+    Aabb& box = mine[r].box;
+    for (int k = 0; k < 3; ++k)
+      box.lo[k] = std::min(box.lo[k], b.lo[k]), box.hi[k] = std::max(box.hi[k], b.hi[k]);
+  }
+  std::vector<std::byte> bytes;
+  append_bytes(bytes, mine.data(), mine.size());
+  const std::vector<std::vector<std::byte>> regions = comm.all_gather(bytes);
+  // 2. to each rank, the owned corners of this rank's sub-tets that reach one of its regions
+  // of another body, with their positions and velocities
+  std::vector<std::vector<std::byte>> to(ranks);
+  std::vector<std::int32_t> ids;
+  for (int r = 0; r < ranks; ++r) {
+    if (r == me || regions[r].empty()) continue;
+    std::size_t at = 0;
+    const auto theirs = read_bytes<Region>(regions[r], at, regions[r].size() / sizeof(Region));
+    Aabb all = theirs.front().box;
+    for (const Region& g : theirs)
+      for (int k = 0; k < 3; ++k)
+        all.lo[k] = std::min(all.lo[k], g.box.lo[k]), all.hi[k] = std::max(all.hi[k], g.box.hi[k]);
+    ids.clear();
+    for (std::uint32_t t : held_) {
+      if (!mine_[t]) continue;
+      const Aabb b = grown(tet_boxes_[t], margin);
+      if (!boxes_overlap(b, all)) continue;
+      const bool near = std::any_of(theirs.begin(), theirs.end(), [&](const Region& g) {
+        return g.body != tet_body_[t] && boxes_overlap(b, g.box);
+      });
+      if (!near) continue;
+      for (std::int32_t n : corners_[t])
+        if (owns(n)) ids.push_back(n);
+    }
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    std::vector<std::int32_t> global(ids.size());
+    std::vector<double> xv(6 * ids.size());
+    for (std::size_t k = 0; k < ids.size(); ++k) {
+      global[k] = part.nodes[ids[k]];
+      for (int d = 0; d < 3; ++d) {
+        xv[6 * k + d] = m.x[3 * ids[k] + d];
+        xv[6 * k + 3 + d] = m.v[3 * ids[k] + d];
+      }
+    }
+    const std::uint64_t count = ids.size();
+    append_bytes(to[r], &count, 1);
+    append_bytes(to[r], global.data(), global.size());
+    append_bytes(to[r], xv.data(), xv.size());
+  }
+  const std::vector<std::vector<std::byte>> from = comm.all_to_all(to);
+  // 3. the foreign nodes: all that came (each from its owner), by global id
+  std::vector<std::pair<std::int32_t, std::array<double, 6>>> got;
+  for (int r = 0; r < ranks; ++r) {
+    if (from[r].empty()) continue;
+    std::size_t at = 0;
+    const auto count = read_bytes<std::uint64_t>(from[r], at, 1)[0];
+    const auto global = read_bytes<std::int32_t>(from[r], at, count);
+    const auto xv = read_bytes<double>(from[r], at, 6 * count);
+    for (std::size_t k = 0; k < count; ++k) {
+      std::array<double, 6> row;
+      std::copy_n(xv.begin() + static_cast<std::ptrdiff_t>(6 * k), 6, row.begin());
+      got.emplace_back(global[k], row);
+    }
+  }
+  std::sort(got.begin(), got.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  foreign_nodes_.resize(got.size());
+  foreign_x_.resize(3 * got.size());
+  foreign_v_.resize(3 * got.size());
+  for (std::size_t k = 0; k < got.size(); ++k) {
+    foreign_nodes_[k] = got[k].first;
+    for (int d = 0; d < 3; ++d) {
+      foreign_x_[3 * k + d] = got[k].second[d];
+      foreign_v_[3 * k + d] = got[k].second[3 + d];
+    }
+  }
+  // 4. the foreign sub-tets all of whose corners came: present, with their boxes
+  for (std::uint32_t t : present_) is_present_[t] = 0;
+  present_ = held_;
+  for (std::uint32_t t : held_) is_present_[t] = 1;
+  std::vector<std::uint32_t> foreign;
+  auto slot = [&](std::int32_t g) {
+    const auto it = std::lower_bound(foreign_nodes_.begin(), foreign_nodes_.end(), g);
+    return it != foreign_nodes_.end() && *it == g
+               ? static_cast<std::int32_t>(it - foreign_nodes_.begin())
+               : -1;
+  };
+  for (std::int32_t g : foreign_nodes_)
+    for (std::int32_t k = node_tet_offset_[g]; k < node_tet_offset_[g + 1]; ++k) {
+      const auto t = static_cast<std::uint32_t>(node_tets_[k]);
+      if (here_[t] || is_present_[t]) continue;
+      std::array<std::int32_t, 4> c;
+      bool all = true;
+      for (int a = 0; a < 4; ++a) all = all && (c[a] = slot(part.contact_tets[t][a])) >= 0;
+      if (!all) continue;
+      corners_[t] = c;
+      is_present_[t] = 1;
+      foreign.push_back(t);
+    }
+  update_tet_boxes(m, foreign);
+  present_.insert(present_.end(), foreign.begin(), foreign.end());
+  std::sort(present_.begin(), present_.end());
+}
+
+void BodyContact::subscribe(const Model& m) {
+  const Communicator& comm = *dist_->comm;
+  const LocalPart& part = dist_->part;
+  const int ranks = comm.size();
+  // the foreign sub-tets of the pairs, and their corners by global id
+  std::vector<std::uint32_t> tets;
+  for (const Pair& p : pairs_)
+    for (std::uint32_t t : {p.i, p.j})
+      if (!here_[t]) tets.push_back(t);
+  std::sort(tets.begin(), tets.end());
+  tets.erase(std::unique(tets.begin(), tets.end()), tets.end());
+  std::vector<std::int32_t> wanted;
+  for (std::uint32_t t : tets)
+    for (std::int32_t g : part.contact_tets[t]) wanted.push_back(g);
+  std::sort(wanted.begin(), wanted.end());
+  wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
+  for (std::uint32_t t : present_)
+    if (!here_[t]) is_present_[t] = 0;
+  for (std::uint32_t t : tets) {
+    for (int a = 0; a < 4; ++a)
+      corners_[t][a] = static_cast<std::int32_t>(
+          std::lower_bound(wanted.begin(), wanted.end(), part.contact_tets[t][a]) - wanted.begin());
+    is_present_[t] = 1;
+  }
+  foreign_nodes_ = wanted;
+  foreign_x_.assign(3 * wanted.size(), 0.0);
+  foreign_v_.assign(3 * wanted.size(), 0.0);
+  // ask each owner for its nodes (ascending: the order both lists keep)
+  std::vector<std::vector<std::byte>> ask(ranks);
+  contact_lists_.clear();
+  std::vector<LocalPart::Neighbour> lists(ranks);
+  for (std::size_t k = 0; k < wanted.size(); ++k) {
+    const int owner = part.node_rank[wanted[k]];
+    append_bytes(ask[owner], &wanted[k], 1);
+    lists[owner].receive.push_back(static_cast<std::int32_t>(k));
+  }
+  const std::vector<std::vector<std::byte>> asked = comm.all_to_all(ask);
+  for (int r = 0; r < ranks; ++r) {
+    std::size_t at = 0;
+    for (std::int32_t g : read_bytes<std::int32_t>(asked[r], at, asked[r].size() / 4)) {
+      const auto it = std::lower_bound(part.nodes.begin(), part.nodes.end(), g);
+      lists[r].send.push_back(static_cast<std::int32_t>(it - part.nodes.begin()));
+    }
+    lists[r].rank = r;
+    if (!lists[r].send.empty() || !lists[r].receive.empty())
+      contact_lists_.push_back(std::move(lists[r]));
+  }
+  present_ = held_;
+  present_.insert(present_.end(), tets.begin(), tets.end());
+  std::sort(present_.begin(), present_.end());
+  comm.exchange(contact_lists_, m.x.data(), foreign_x_.data(), 3);
+  comm.exchange(contact_lists_, m.v.data(), foreign_v_.data(), 3);
+}
+
+void BodyContact::refresh_foreign(const Model& m) {
+  if (resubscribe_) {
+    resubscribe_ = false;
+    subscribe(m);
+    return;
+  }
+  const Communicator& comm = *dist_->comm;
+  comm.exchange(contact_lists_, m.x.data(), foreign_x_.data(), 3);
+  comm.exchange(contact_lists_, m.v.data(), foreign_v_.data(), 3);
 }
 
 void BodyContact::append_springs(const Model& m, std::vector<ContactSpring>& out) const {
   const double margin = m.settings.contact_stiffness_margin();
+  // a corner's node for the estimate: a local node, or node_count + its foreign slot
+  auto node_of = [&](std::uint32_t t, int k) {
+    return here_[t] ? corners_[t][k] : m.node_count + corners_[t][k];
+  };
   for (std::size_t q = 0; q < pairs_.size(); ++q) {
     if (!evaluated_[q]) continue;
     const PairOutcome& r = results_[q];
@@ -295,25 +614,26 @@ void BodyContact::append_springs(const Model& m, std::vector<ContactSpring>& out
     ContactSpring c;
     c.count = 8;
     c.k = margin * r.stiffness;
-    const auto& ta = m.contact_tets[pairs_[q].i];
-    const auto& tb = m.contact_tets[pairs_[q].j];
     for (int k = 0; k < 4; ++k) {
-      c.node[k] = ta[k];
-      c.node[4 + k] = tb[k];
+      c.node[k] = node_of(pairs_[q].i, k);
+      c.node[4 + k] = node_of(pairs_[q].j, k);
       c.weight[k] = Vec3(r.force[3 * k], r.force[3 * k + 1], r.force[3 * k + 2]).dot(n) / N;
       c.weight[4 + k] =
           Vec3(r.force[12 + 3 * k], r.force[13 + 3 * k], r.force[14 + 3 * k]).dot(n) / N;
     }
     out.push_back(c);
   }
+  // (the nodes here: a foreign node's springs act on its own rank)
   node_mark_.assign(m.node_count, 0);
   for (std::size_t q = 0; q < pairs_.size(); ++q)
     if (evaluated_[q] && results_[q].touching)
       for (std::uint32_t t : {pairs_[q].i, pairs_[q].j})
-        for (std::int32_t n : m.contact_tets[t]) node_mark_[n] = 1;
+        if (here_[t])
+          for (std::int32_t n : corners_[t]) node_mark_[n] = 1;
   for (const Pair& p : pairs_)
-    for (std::uint32_t t : {p.i, p.j})
-      for (std::int32_t n : m.contact_tets[t]) {
+    for (std::uint32_t t : {p.i, p.j}) {
+      if (!here_[t]) continue;
+      for (std::int32_t n : corners_[t]) {
         if (node_mark_[n] || !(node_contact_stiffness_[n] > 0.0) || held(m, n)) continue;
         node_mark_[n] = 1;
         ContactSpring c;
@@ -323,12 +643,19 @@ void BodyContact::append_springs(const Model& m, std::vector<ContactSpring>& out
         c.k = margin * node_contact_stiffness_[n];
         out.push_back(c);
       }
+    }
 }
 
 void BodyContact::exchange_state(StateArchive& a) {
   using L = StateArchive::Length;
   const StateArchive::Scope scope(a, "body_contact");
-  a.array("pairs", pairs_, L::variable);
+  // A rank saves the pairs it counts (every pair once over the ranks, merged by key when
+  // gathered) and, loading the whole list, keeps those of its nodes.
+  std::vector<Pair> counted;
+  if (dist_ && a.saving())
+    for (const Pair& p : pairs_)
+      if (counts(p)) counted.push_back(p);
+  a.array("pairs", dist_ && a.saving() ? counted : pairs_, L::variable);
   a.array("active_tets", active_tets_, L::variable);
   std::vector<Vec3> reference = verlet_.recorded_positions();
   a.array("verlet_reference", reference, L::variable);
@@ -345,7 +672,18 @@ void BodyContact::exchange_state(StateArchive& a) {
   a.value("touching_evaluations", touching_evaluations_);
   if (a.saving()) return;
   if (!reference.empty()) verlet_.record(reference);
-  // the per-pair slots of the next step, as a rebuild leaves them
+  if (dist_ && active_) {
+    std::erase_if(pairs_, [&](const Pair& p) { return !mine_[p.i] && !mine_[p.j]; });
+    resubscribe_ = true;  // (the foreign sub-tets' lists, at the next step: every rank loads)
+  }
+  // the sub-tets of the pairs, and the per-pair slots of the next step, as a rebuild leaves them
+  active_tets_.clear();
+  for (const Pair& p : pairs_) {
+    active_tets_.push_back(p.i);
+    active_tets_.push_back(p.j);
+  }
+  std::sort(active_tets_.begin(), active_tets_.end());
+  active_tets_.erase(std::unique(active_tets_.begin(), active_tets_.end()), active_tets_.end());
   results_.resize(pairs_.size());
   evaluated_.assign(pairs_.size(), 0);
 }

@@ -10,6 +10,16 @@
 // over pairs in their sorted order, so results do not depend on the thread count. The largest
 // penetration over the touching pairs is reported so that a user can see how far the penalty
 // lets the bodies sink into each other.
+//
+// On a rank of a distributed run (docs/ARCHITECTURE.md, "Distributed runs") the sub-tets keep
+// the whole model's numbering, and a rank lists the pairs with a sub-tet that has a node it
+// owns: the one-process list's pairs that reach its nodes, in the same order, so each owned
+// node's contact force has one process's bits. The other ranks' sub-tets within reach come as
+// foreign sub-tets: at each broadphase rebuild every rank sends the sub-tets near another
+// rank's bodies, and then, until the next, the positions and velocities of the corners of those
+// in its pairs. A pair between two ranks is evaluated on both; its energy and friction work are
+// counted by the rank owning the first corner of its first sub-tet (exact sums, added over the
+// ranks), and the maxima are taken over the ranks.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -21,14 +31,17 @@
 #include "contact/verlet_buffer.hpp"
 #include "engine/contact_model.hpp"
 #include "engine/contact_patch.hpp"
+#include "engine/distributed/distribution.hpp"
 #include "engine/model.hpp"
+#include "engine/stable_step/highest_frequency.hpp"
 #include "engine/state_archive.hpp"
 
 namespace femdem {
 
 class BodyContact final : public ContactModel {
  public:
-  explicit BodyContact(const Model& m);
+  // `dist`: this rank's part of a distributed run (null: one process); kept, must outlive this.
+  explicit BodyContact(const Model& m, const Distribution* dist = nullptr);
 
   // False when no two bodies can touch (fewer than two bodies with contact sub-tets, or all
   // fixed): compute() then does nothing.
@@ -74,8 +87,19 @@ class BodyContact final : public ContactModel {
   // step bound adds it to the element frequency squared.
   double max_stiffness_over_mass() const { return max_k_over_m_; }
 
+  // Candidate pairs listed (on a rank: those listed here) and touching (the whole model's).
   std::size_t candidate_pairs() const { return pairs_.size(); }
   std::size_t touching_pairs() const { return touching_; }
+  // On a rank: the other ranks' nodes its pairs read (for the assembled stable step's springs,
+  // which name them as node_count + k), and how many it received in the last step.
+  ForeignNodes foreign_nodes() const {
+    return {static_cast<std::int32_t>(foreign_nodes_.size()), contact_lists_};
+  }
+  // Distributed runs: the other ranks' nodes received per step by all ranks (positions and
+  // velocities, 48 bytes each), on average over the steps since the start or the resume.
+  double foreign_nodes_per_step() const {
+    return computes_ > 0 ? static_cast<double>(foreign_received_) / computes_ : 0.0;
+  }
   std::int64_t broadphase_runs() const { return broadphase_runs_; }
   // Totals over the run: candidate pairs evaluated, and those found touching.
   std::int64_t pair_evaluations() const { return pair_evaluations_; }
@@ -91,28 +115,63 @@ class BodyContact final : public ContactModel {
 
  private:
   struct Pair {
-    std::uint32_t i = 0, j = 0;  // contact sub-tets, i < j
+    std::uint32_t i = 0, j = 0;  // contact sub-tets (the whole model's numbering), i < j
     double penalty = 0.0;        // Pa
     double friction = 0.0;       // Coulomb coefficient
     PairSpring spring;
   };
 
   void update_candidates(const Model& m);
-  // The corners and boxes of every contact sub-tet (all) or of those in candidate pairs.
-  void update_tet_boxes(const Model& m, bool all);
-  void gather_patches(const Model& m);
+  // The corners and boxes of the sub-tets listed.
+  void update_tet_boxes(const Model& m, const std::vector<std::uint32_t>& tets);
+  void gather_patches();
   // Every candidate pair through the law, into results_ (in parallel).
   template <class Law>
   void evaluate_pairs(const Model& m, double step_dt);
+  // The sums of the step's outcomes (energy, friction work, maxima) into the members, added or
+  // compared over the ranks.
+  void sum_outcomes(const Model& m);
+  // A rank's: whether it owns local node n (every node in one process).
+  bool owns(std::int32_t n) const { return !dist_ || dist_->part.node_owned[n]; }
+  // Whether this rank counts pair p in the sums (one rank does, the owner of tet i's corner 0).
+  bool counts(const Pair& p) const { return here_[p.i] && owns(corners_[p.i][0]); }
+  // Distributed runs: the sub-tets of other ranks within reach of this rank's, with the
+  // positions and velocities of their corners (at a rebuild).
+  void fetch_near(const Model& m);
+  // Distributed runs: the lists that bring, each step, the corners of the foreign sub-tets of
+  // the pairs; then brings them.
+  void subscribe(const Model& m);
+  // Brings the foreign corners' positions and velocities along the lists.
+  void refresh_foreign(const Model& m);
 
+  const Distribution* dist_ = nullptr;
   BodyPairLaw law_;
   bool active_ = false;
   NbsBroadphase broadphase_;
   VerletBuffer verlet_;
-  std::vector<std::int32_t> nodes_;  // the nodes of contact sub-tets
-  std::vector<Vec3> node_positions_;
+  // Per contact sub-tet of the whole model: its corners (local nodes when held here, else
+  // slots of foreign_nodes_ while it is one), body and depth; whether it is held here, and
+  // whether it has a node this rank owns (its pairs are listed here).
+  std::vector<std::array<std::int32_t, 4>> corners_;
+  std::vector<std::int32_t> tet_body_;
+  std::vector<double> tet_depth_;
+  std::vector<std::uint8_t> here_, mine_;
+  std::vector<std::uint32_t> held_;  // the held sub-tets, ascending
+  // The sub-tets the broadphase sees (held, and foreign within reach), ascending, with their
+  // margin boxes and bodies in that order.
+  std::vector<std::uint32_t> present_;
+  std::vector<std::uint8_t> is_present_;
   std::vector<Aabb> boxes_;
-  std::vector<std::int32_t> groups_;  // body of each contact sub-tet
+  std::vector<std::int32_t> groups_;
+  // Foreign nodes (distributed runs): global ids ascending, positions and velocities (3 each),
+  // the lists they come by, and the whole model's contact sub-tets around each global node.
+  std::vector<std::int32_t> foreign_nodes_;
+  std::vector<double> foreign_x_, foreign_v_;
+  std::vector<LocalPart::Neighbour> contact_lists_;
+  std::vector<std::int32_t> node_tet_offset_, node_tets_;
+  bool resubscribe_ = false;         // after a load: the lists are to be made again
+  std::vector<std::int32_t> nodes_;  // the (local) nodes of held contact sub-tets
+  std::vector<Vec3> node_positions_;
   std::vector<CandidatePair> found_;
   std::vector<Pair> pairs_, old_pairs_;
   std::vector<PairOutcome> results_;
@@ -141,6 +200,7 @@ class BodyContact final : public ContactModel {
   std::vector<std::pair<std::uint64_t, std::uint32_t>> patch_keys_;  // (body pair, result index)
   std::int64_t broadphase_runs_ = 0;
   std::int64_t pair_evaluations_ = 0, touching_evaluations_ = 0;
+  std::int64_t foreign_received_ = 0, computes_ = 0;  // (not in checkpoints: a log figure)
 };
 
 }  // namespace femdem

@@ -8,22 +8,26 @@
 
 namespace femdem {
 
-CompactionMonitor::CompactionMonitor(const Simulation& sim, const CompactionSpec& spec)
-    : spec_(spec) {
-  const Model& m = sim.model();
-  powder_.assign(m.bodies.size(), 0);
-  if (spec_.powder.empty()) {
-    for (std::size_t b = 0; b < m.bodies.size(); ++b) powder_[b] = m.bodies[b].fixed ? 0 : 1;
+std::vector<std::uint8_t> CompactionMonitor::powder_of(const Model& m, const CompactionSpec& spec) {
+  std::vector<std::uint8_t> powder(m.bodies.size(), 0);
+  if (spec.powder.empty()) {
+    for (std::size_t b = 0; b < m.bodies.size(); ++b) powder[b] = m.bodies[b].fixed ? 0 : 1;
   } else {
-    for (int b : spec_.powder) powder_[static_cast<std::size_t>(b)] = 1;
+    for (int b : spec.powder) powder[static_cast<std::size_t>(b)] = 1;
   }
+  return powder;
+}
+
+CompactionMonitor::CompactionMonitor(const Simulation& sim, const CompactionSpec& spec)
+    : spec_(spec), powder_(powder_of(sim.model(), spec)) {
+  const Model& m = sim.model();
   const Vec3 n = m.walls[spec_.bottom].normal;
   v0_ = sim.bodies_volume(powder_);
   punch0_ = m.walls[spec_.punch].point.dot(n);
   h0_ = (m.walls[spec_.punch].point - m.walls[spec_.bottom].point).dot(n);
 }
 
-CompactionSample CompactionMonitor::sample(const Simulation& sim) const {
+CompactionSample CompactionMonitor::sample(const Simulation& sim, double solid_volume) const {
   const Model& m = sim.model();
   const Wall& punch = m.walls[spec_.punch];
   const Wall& bottom = m.walls[spec_.bottom];
@@ -43,7 +47,7 @@ CompactionSample CompactionMonitor::sample(const Simulation& sim) const {
   const double wetted = spec_.perimeter * s.height;
   s.radial_pressure =
       wetted > 0.0 ? s.die_normal_force / wetted : std::numeric_limits<double>::quiet_NaN();
-  s.solid_volume = sim.bodies_volume(powder_);
+  s.solid_volume = solid_volume;
   const double column = spec_.area * s.height;
   s.relative_density =
       column > 0.0 ? s.solid_volume / column : std::numeric_limits<double>::quiet_NaN();

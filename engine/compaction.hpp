@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/model.hpp"
 #include "engine/model_spec.hpp"
 #include "engine/state_archive.hpp"
 
@@ -36,7 +37,12 @@ class CompactionMonitor {
   // spec's indices refer to the simulation's walls and bodies; an empty powder list means every
   // body that is not fixed. Records V0 and the initial column height from the current state.
   CompactionMonitor(const Simulation& sim, const CompactionSpec& spec);
-  CompactionSample sample(const Simulation& sim) const;
+  // The bodies whose volume is the powder's (per body: 1 for the powder).
+  static std::vector<std::uint8_t> powder_of(const Model& m, const CompactionSpec& spec);
+  const std::vector<std::uint8_t>& powder() const { return powder_; }
+  // From the walls of `sim` and the powder's solid volume now (Simulation::bodies_volume of
+  // powder(): on the ranks of a distributed run, a sum they make together).
+  CompactionSample sample(const Simulation& sim, double solid_volume) const;
   const CompactionSpec& spec() const { return spec_; }
   double initial_solid_volume() const { return v0_; }
   // Saves or loads what it recorded at t = 0 (a resumed run measures against the same start).

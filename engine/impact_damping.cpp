@@ -12,6 +12,9 @@ void prepare_patch_loads(const Model& m, const std::vector<ContactPatch>& patche
                          const std::vector<double>& accel, double half_dt, PatchLoads& s) {
   auto free_body = [&](std::int32_t b) { return b >= 0 && !m.bodies[b].fixed; };
   std::fill(s.known.begin(), s.known.end(), 0);
+  s.counted.clear();
+  s.power = ExactSum{};
+  s.wall_force.assign(3 * m.walls.size(), ExactSum{});
   for (const ContactPatch& p : patches) {
     if (!patch_acts(p)) continue;
     for (const std::int32_t b : {p.body_a, p.body_b})
@@ -27,11 +30,11 @@ void prepare_patch_loads(const Model& m, const std::vector<ContactPatch>& patche
   }
 }
 
-double damp_impacts(Model& m, double ratio, const std::vector<ContactPatch>& patches,
-                    PatchLoads& s) {
+void damp_impacts(const Model& m, double ratio, const std::vector<ContactPatch>& patches,
+                  PatchLoads& s) {
   auto free_body = [&](std::int32_t b) { return b >= 0 && !m.bodies[b].fixed; };
-  double power = 0.0;
-  for (const ContactPatch& p : patches) {
+  for (std::size_t q = 0; q < patches.size(); ++q) {
+    const ContactPatch& p = patches[q];
     if (!patch_acts(p)) continue;
     const double F = p.force_on_a.norm();
     const Vec3 n = p.force_on_a / F;  // from b towards a
@@ -56,16 +59,15 @@ double damp_impacts(Model& m, double ratio, const std::vector<ContactPatch>& pat
     const double vn = (va - vb).dot(n);   // < 0 while approaching
     const double c = 2.0 * ratio * std::sqrt(p.stiffness / inverse_mass);
     const double fd = std::max(-c * vn, -F);
-    power += fd * vn;
     const Vec3 f = fd * n;
     if (free_body(p.body_a)) s.add(p.body_a, x, f);
-    if (free_body(p.body_b)) {
-      s.add(p.body_b, x, -f);
-    } else if (p.body_b < 0) {
-      m.walls[static_cast<std::size_t>(-1 - p.body_b)].force -= f;
-    }
+    if (free_body(p.body_b)) s.add(p.body_b, x, -f);
+    if (!s.counts(q)) continue;
+    s.power.add(fd * vn);
+    if (p.body_b < 0)
+      for (int k = 0; k < 3; ++k)
+        s.wall_force[3 * static_cast<std::size_t>(-1 - p.body_b) + k].add(-f[k]);
   }
-  return power;
 }
 
 void apply_patch_loads(Model& m, PatchLoads& s) {

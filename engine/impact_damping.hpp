@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "engine/contact_patch.hpp"
+#include "engine/exact_sum.hpp"
 #include "engine/model.hpp"
 #include "engine/rigid_motion.hpp"
 
@@ -39,6 +40,14 @@ struct PatchLoads {
   std::vector<RigidMotion> rigid;   // the rigid motions computed this step
   std::vector<std::uint8_t> known;  // rigid[b] is this step's
   std::vector<Vec3> force, moment;  // the loads on each body, summed over its patches
+  // The loads' power (<= 0) and their reactions on the walls (3 per wall), summed exactly over
+  // the patches counted here: all in one process; on a rank of a distributed run, where a
+  // patch between two ranks' bodies is on both, those of its first body
+  // (engine/distributed/patch_motions.hpp). Reset by prepare_patch_loads.
+  std::vector<std::uint8_t> counted;  // per patch (empty: every patch)
+  ExactSum power;
+  std::vector<ExactSum> wall_force;
+  bool counts(std::size_t patch) const { return counted.empty() || counted[patch]; }
   void resize(std::size_t bodies) {
     rigid.assign(bodies, RigidMotion{});
     known.assign(bodies, 0);
@@ -61,12 +70,12 @@ struct PatchLoads {
 void prepare_patch_loads(const Model& m, const std::vector<ContactPatch>& patches,
                          const std::vector<double>& accel, double half_dt, PatchLoads& s);
 
-// Adds the impact damping forces of the patches to the loads (and their reactions to the
-// walls' force) and returns their power (<= 0). Each body's patches are summed into one
+// Adds the impact damping forces of the patches to the loads, their reactions on the walls to
+// s.wall_force and their power (<= 0) to s.power. Each body's patches are summed into one
 // resultant and moment, so that its nodes are visited once however many bodies and walls it
 // touches.
-double damp_impacts(Model& m, double ratio, const std::vector<ContactPatch>& patches,
-                    PatchLoads& s);
+void damp_impacts(const Model& m, double ratio, const std::vector<ContactPatch>& patches,
+                  PatchLoads& s);
 
 // Puts each body's summed load on its nodes as a rigid load (added to m.f_contact).
 void apply_patch_loads(Model& m, PatchLoads& s);

@@ -6,11 +6,11 @@
 
 namespace femdem {
 
-double resist_rolling(const Model& m, double mu_r, const std::vector<ContactPatch>& patches,
-                      double dt, PatchLoads& s) {
+void resist_rolling(const Model& m, double mu_r, const std::vector<ContactPatch>& patches,
+                    double dt, PatchLoads& s) {
   auto free_body = [&](std::int32_t b) { return b >= 0 && !m.bodies[b].fixed; };
-  double power = 0.0;
-  for (const ContactPatch& p : patches) {
+  for (std::size_t q = 0; q < patches.size(); ++q) {
+    const ContactPatch& p = patches[q];
     if (!patch_acts(p)) continue;
     const double N = p.force_on_a.norm();
     const Vec3 n = p.force_on_a / N;
@@ -40,11 +40,10 @@ double resist_rolling(const Model& m, double mu_r, const std::vector<ContactPatc
     if (a_free) inverse_inertia += e.dot(s.rigid[p.body_a].inertia_inverse * e);
     if (b_free) inverse_inertia += e.dot(s.rigid[p.body_b].inertia_inverse * e);
     const double M = std::min(mu_r * radius * N, 0.5 * omega / (inverse_inertia * dt));
-    power -= M * omega;
+    if (s.counts(q)) s.power.add(-M * omega);
     if (a_free) s.moment[p.body_a] -= M * e;
     if (b_free) s.moment[p.body_b] += M * e;
   }
-  return power;
 }
 
 }  // namespace femdem

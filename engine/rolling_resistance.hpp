@@ -25,8 +25,8 @@
 namespace femdem {
 
 // Adds the rolling-resistance moments of the patches to the loads (prepare_patch_loads first)
-// and returns their power (<= 0). dt: the step the cap is set for.
-double resist_rolling(const Model& m, double mu_r, const std::vector<ContactPatch>& patches,
-                      double dt, PatchLoads& s);
+// and their power (<= 0) to s.power. dt: the step the cap is set for.
+void resist_rolling(const Model& m, double mu_r, const std::vector<ContactPatch>& patches,
+                    double dt, PatchLoads& s);
 
 }  // namespace femdem

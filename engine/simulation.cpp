@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <sstream>
 
+#include "engine/distributed/patch_motions.hpp"
 #include "engine/element_gather.hpp"
 #include "engine/element_kernel.hpp"
 #include "engine/errors.hpp"
@@ -46,7 +47,7 @@ Simulation::Simulation(Model model, std::optional<Distribution> distribution)
       kernels_(compile_kernels(model_.materials)),
       element_pass_(model_, kernels_),
       wall_contact_(model_, model_.contact.patch_loads(), dist_ ? &*dist_ : nullptr),
-      body_contact_(model_) {
+      body_contact_(model_, dist_ ? &*dist_ : nullptr) {
   const auto nn = static_cast<std::size_t>(model_.node_count);
   const auto ne = static_cast<std::size_t>(model_.element_count);
   check_distributable();
@@ -246,11 +247,18 @@ void Simulation::compute_forces(double step_dt) {
     body_contact_.append_patches(patches_);
     wall_contact_.append_patches(patches_);
     prepare_patch_loads(m, patches_, accel_, 0.5 * step_dt, patch_loads_);
+    if (dist_) share_patch_motions(m, *dist_, patches_, patch_loads_);
     if (m.contact.impact_damping > 0.0)
-      sums.damping_power += damp_impacts(m, m.contact.impact_damping, patches_, patch_loads_);
+      damp_impacts(m, m.contact.impact_damping, patches_, patch_loads_);
     if (m.contact.rolling_resistance > 0.0)
-      sums.damping_power +=
-          resist_rolling(m, m.contact.rolling_resistance, patches_, step_dt, patch_loads_);
+      resist_rolling(m, m.contact.rolling_resistance, patches_, step_dt, patch_loads_);
+    // their power and the walls' reactions, each counted once over the ranks
+    std::vector<ExactSum>& loads = patch_loads_.wall_force;
+    loads.push_back(patch_loads_.power);
+    reduce(loads);
+    sums.damping_power += loads.back().value();
+    for (std::size_t w = 0; w < m.walls.size(); ++w)
+      for (int k = 0; k < 3; ++k) m.walls[w].force[k] += loads[3 * w + k].value();
     apply_patch_loads(m, patch_loads_);
   }
   const double contact = sums.energy, friction_dissipated = sums.friction_dissipated,
@@ -309,9 +317,10 @@ double Simulation::damp_deformation(double alpha) {
     }
     body_power_[bi] = power;
   }
-  double power = 0.0;
-  for (const double p : body_power_) power += p;
-  return power;
+  // (exact: a rank has the bodies it holds whole, the others' powers are 0 here)
+  ExactSum power[1] = {exact_sum_of(nb, [&](std::int64_t bi) { return body_power_[bi]; })};
+  reduce(power);
+  return power[0].value();
 }
 
 void Simulation::check_distributable() const {
@@ -321,12 +330,11 @@ void Simulation::check_distributable() const {
   std::string missing;
   const auto& body_rank = dist_->part.body_rank;
   const bool cut = std::find(body_rank.begin(), body_rank.end(), -1) != body_rank.end();
-  if (m.bodies.size() > 1)
-    missing = "more than one body";
-  else if (s.deformation_damping > 0.0)
-    missing = "simulation.deformation_damping";
+  if (cut && s.deformation_damping > 0.0)
+    missing = "simulation.deformation_damping on a body cut among ranks";
   else if (cut && m.contact.patch_loads())
     missing = "contact.impact_damping or rolling_resistance on a body cut among ranks";
+
   if (!missing.empty())
     throw InputError("distributed runs cannot yet do this scene: " + missing +
                      " (issue 23, docs/ARCHITECTURE.md \"Distributed runs\"); run it as one "
@@ -491,7 +499,8 @@ double Simulation::assembled_step(double bound, bool force) {
     for (const ContactModel* c :
          std::initializer_list<const ContactModel*>{&wall_contact_, &body_contact_})
       if (c->active()) c->append_springs(m, springs_);
-    const FrequencyEstimate est = frequency_->estimate(m, springs_, dist_ ? &*dist_ : nullptr);
+    const FrequencyEstimate est =
+        frequency_->estimate(m, springs_, dist_ ? &*dist_ : nullptr, body_contact_.foreign_nodes());
     ++frequency_estimates_;
     frequency_iterations_ += est.iterations;
     estimate_step_ = steps_;

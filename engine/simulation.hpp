@@ -112,7 +112,8 @@ class Simulation {
   Vec3 wall_velocity(int wall) const { return model_.walls[wall].velocity; }
   // Current (deformed) volume of the bodies b with body_mask[b] != 0 (one entry per body)
   // together: one pass over the elements, no allocation, deterministic (what the compaction
-  // columns call every history row).
+  // columns call every history row). On the ranks of a distributed run every rank calls it
+  // (the owned elements' volumes are added over the ranks).
   double bodies_volume(std::span<const std::uint8_t> body_mask) const;
 
   // Gauss-point averages per element for output: Cauchy stress (6), von Mises, pressure

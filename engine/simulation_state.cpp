@@ -22,8 +22,8 @@ double Simulation::bodies_volume(std::span<const std::uint8_t> body_mask) const 
   const std::int32_t ne = m.element_count;
   double* ve = elem_scratch_.data();
   // One parallel pass over all elements (a powder of many small bodies parallelises as well as
-  // one big body), each into its own slot, then one serial sum in element order: the same bits
-  // for any thread count.
+  // one big body), each into its own slot, then one exact sum (over the owned elements, added
+  // over the ranks): the same bits for any thread and rank count.
 #pragma omp parallel for schedule(static) if (ne > kParallelMinElements)
   for (std::int32_t e = 0; e < ne; ++e) {
     if (!body_mask[m.element_body[e]]) continue;
@@ -33,10 +33,11 @@ double Simulation::bodies_volume(std::span<const std::uint8_t> body_mask) const 
     const std::size_t es = static_cast<std::size_t>(e);
     ve[e] = tet10_current_volume(xe, m.dNdX.data() + 120 * es, m.gauss_weight.data() + 4 * es);
   }
-  double v = 0.0;
-  for (std::int32_t e = 0; e < ne; ++e)
-    if (body_mask[m.element_body[e]]) v += ve[e];
-  return v;
+  ExactSum v[1] = {exact_sum_of(ne, [&](std::int64_t e) {
+    return body_mask[m.element_body[e]] && owns_element(e) ? ve[e] : 0.0;
+  })};
+  reduce(v);
+  return v[0].value();
 }
 
 void Simulation::follow_clock(const Simulation& part) {

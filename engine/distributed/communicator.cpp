@@ -106,37 +106,87 @@ bool Communicator::all(bool flag) const {
 }
 
 void Communicator::exchange(const LocalPart& part, double* values, int width) const {
-  if (size_ == 1 || part.neighbours.empty()) return;
+  exchange(part.neighbours, values, values, width);
+}
+
+void Communicator::exchange(std::span<const LocalPart::Neighbour> lists, const double* from,
+                            double* to, int width) const {
+  if (size_ == 1 || lists.empty()) return;
   auto& send = send_buffers();
   auto& recv = receive_buffers();
-  const std::size_t nb = part.neighbours.size();
+  const std::size_t nb = lists.size();
   send.resize(nb);
   recv.resize(nb);
   std::vector<MPI_Request> requests(2 * nb);
   constexpr int kTag = 23;
   for (std::size_t k = 0; k < nb; ++k) {
-    const LocalPart::Neighbour& n = part.neighbours[k];
+    const LocalPart::Neighbour& n = lists[k];
     recv[k].resize(n.receive.size() * width);
     MPI_Irecv(recv[k].data(), static_cast<int>(recv[k].size()), MPI_DOUBLE, n.rank, kTag,
               MPI_COMM_WORLD, &requests[k]);
   }
   for (std::size_t k = 0; k < nb; ++k) {
-    const LocalPart::Neighbour& n = part.neighbours[k];
+    const LocalPart::Neighbour& n = lists[k];
     std::vector<double>& b = send[k];
     b.resize(n.send.size() * width);
     for (std::size_t i = 0; i < n.send.size(); ++i)
       for (int c = 0; c < width; ++c)
-        b[i * width + c] = values[static_cast<std::size_t>(n.send[i]) * width + c];
+        b[i * width + c] = from[static_cast<std::size_t>(n.send[i]) * width + c];
     MPI_Isend(b.data(), static_cast<int>(b.size()), MPI_DOUBLE, n.rank, kTag, MPI_COMM_WORLD,
               &requests[nb + k]);
   }
   MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
   for (std::size_t k = 0; k < nb; ++k) {
-    const LocalPart::Neighbour& n = part.neighbours[k];
+    const LocalPart::Neighbour& n = lists[k];
     for (std::size_t i = 0; i < n.receive.size(); ++i)
       for (int c = 0; c < width; ++c)
-        values[static_cast<std::size_t>(n.receive[i]) * width + c] = recv[k][i * width + c];
+        to[static_cast<std::size_t>(n.receive[i]) * width + c] = recv[k][i * width + c];
   }
+}
+
+std::vector<std::vector<std::byte>> Communicator::all_gather(
+    std::span<const std::byte> mine) const {
+  std::vector<std::vector<std::byte>> all(static_cast<std::size_t>(size_));
+  if (size_ == 1) {
+    all[0].assign(mine.begin(), mine.end());
+    return all;
+  }
+  int n = static_cast<int>(mine.size());
+  std::vector<int> counts(size_), offsets(size_ + 1, 0);
+  MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  for (int r = 0; r < size_; ++r) offsets[r + 1] = offsets[r] + counts[r];
+  std::vector<std::byte> joined(static_cast<std::size_t>(offsets[size_]));
+  MPI_Allgatherv(mine.data(), n, MPI_BYTE, joined.data(), counts.data(), offsets.data(), MPI_BYTE,
+                 MPI_COMM_WORLD);
+  for (int r = 0; r < size_; ++r)
+    all[r].assign(joined.begin() + offsets[r], joined.begin() + offsets[r + 1]);
+  return all;
+}
+
+std::vector<std::vector<std::byte>> Communicator::all_to_all(
+    const std::vector<std::vector<std::byte>>& to_each) const {
+  std::vector<std::vector<std::byte>> from(static_cast<std::size_t>(size_));
+  if (size_ == 1) {
+    from[0] = to_each.at(0);
+    return from;
+  }
+  std::vector<int> send_counts(size_), send_offsets(size_ + 1, 0), recv_counts(size_),
+      recv_offsets(size_ + 1, 0);
+  for (int r = 0; r < size_; ++r) {
+    send_counts[r] = static_cast<int>(to_each.at(r).size());
+    send_offsets[r + 1] = send_offsets[r] + send_counts[r];
+  }
+  MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  for (int r = 0; r < size_; ++r) recv_offsets[r + 1] = recv_offsets[r] + recv_counts[r];
+  std::vector<std::byte> out(static_cast<std::size_t>(send_offsets[size_])),
+      in(static_cast<std::size_t>(recv_offsets[size_]));
+  for (int r = 0; r < size_; ++r)
+    std::copy(to_each[r].begin(), to_each[r].end(), out.begin() + send_offsets[r]);
+  MPI_Alltoallv(out.data(), send_counts.data(), send_offsets.data(), MPI_BYTE, in.data(),
+                recv_counts.data(), recv_offsets.data(), MPI_BYTE, MPI_COMM_WORLD);
+  for (int r = 0; r < size_; ++r)
+    from[r].assign(in.begin() + recv_offsets[r], in.begin() + recv_offsets[r + 1]);
+  return from;
 }
 
 namespace {

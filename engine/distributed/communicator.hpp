@@ -39,6 +39,15 @@ class Communicator {
   // The ghost nodes' values from their owners: `width` doubles per node of `part`, in local
   // numbering; each rank sends its owned nodes that others hold and receives its ghosts.
   void exchange(const LocalPart& part, double* values, int width) const;
+  // The same along any lists: each rank sends from[send[i]] to `rank` and puts what it receives
+  // at to[receive[i]] (`width` doubles each; from and to may be the same array).
+  void exchange(std::span<const LocalPart::Neighbour> lists, const double* from, double* to,
+                int width) const;
+  // Every rank gets every rank's bytes, in rank order (its own included).
+  std::vector<std::vector<std::byte>> all_gather(std::span<const std::byte> mine) const;
+  // Rank r gets to_each[r] of every rank, in rank order (to_each has size() entries).
+  std::vector<std::vector<std::byte>> all_to_all(
+      const std::vector<std::vector<std::byte>>& to_each) const;
   // Rank 0 gets every rank's bytes, in rank order (its own first); the others get nothing.
   std::vector<std::vector<std::byte>> gather(std::span<const std::byte> mine) const;
   // Every rank gets rank 0's bytes (any size).

@@ -87,6 +87,17 @@ LocalPart local_part(const Model& m, const Partition& p, int rank, int layers) {
       if (p.element_rank[e] != r) r = -1;
     part.body_rank.push_back(r);
   }
+  part.contact_tets = m.contact_tets;
+  part.contact_tet_body = m.contact_tet_body;
+  part.contact_tet_depth = m.contact_tet_depth;
+  part.contact_tet_local.assign(m.contact_tets.size(), -1);
+  std::int32_t held_tets = 0;  // (local_model keeps the same ones, in the same order)
+  for (std::size_t t = 0; t < m.contact_tets.size(); ++t) {
+    bool all = true;
+    for (std::int32_t n : m.contact_tets[t]) all = all && local[n] >= 0;
+    if (all) part.contact_tet_local[t] = held_tets++;
+  }
+  part.node_rank = p.node_rank;
   return part;
 }
 

@@ -10,6 +10,7 @@
 // updated here too, from the same positions, with the same bits as on their owner. Each step it
 // receives the positions and velocities of the nodes it holds but does not own (its ghosts)
 // from their owners, and sends its own to the ranks that hold them.
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -40,6 +41,15 @@ struct LocalPart {
   std::vector<std::int32_t> surface;
   // per body: the rank that holds all of it, or -1 for a body cut among ranks
   std::vector<std::int32_t> body_rank;
+  // For contact between bodies across ranks (engine/body_contact.hpp): the whole model's
+  // contact sub-tetrahedra as Model has them (corners as global node ids, bodies, depths),
+  // each one's index among the local model's (-1 where this rank does not hold all four
+  // corners), and the rank that owns each node of the whole model.
+  std::vector<std::array<std::int32_t, 4>> contact_tets;
+  std::vector<std::int32_t> contact_tet_body;
+  std::vector<double> contact_tet_depth;
+  std::vector<std::int32_t> contact_tet_local;
+  std::vector<std::int32_t> node_rank;
 };
 
 // How deep the held elements must reach around the owned nodes: 1, or 3 if any element uses

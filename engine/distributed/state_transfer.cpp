@@ -12,17 +12,20 @@ namespace femdem {
 namespace {
 
 enum class Spread {
-  node,     // a row per node
-  element,  // a row per element
-  keyed,    // a list of rows with a global key each, cut by owner (kKeyed)
-  summed,   // one number per rank, the whole model's being their sum
-  same,     // alike on every rank
-  not_yet,  // contact pairs between bodies: must be empty until contact runs across ranks
+  node,          // a row per node
+  element,       // a row per element
+  keyed,         // a list of rows with a global key each, cut by owner (kKeyed)
+  summed,        // one number per rank, the whole model's being their sum
+  same,          // alike on every rank
+  derived,       // remade by the loader from other arrays: not gathered
+  contact_node,  // a row per node of the contact sub-tetrahedra (ascending global ids)
 };
 
 // The lists of rows each rank keeps for its own nodes, by a global key (ascending in one
 // process): the first array is the key, the others have as many rows. Gathered, the ranks'
 // rows are merged by key; scattered, every rank gets all rows and its loader keeps its own.
+// A list with no other arrays has its key in its rows: the first two 4-byte unsigned integers
+// of each (the contact pairs' sub-tets i < j), which each rank saves once over the ranks.
 struct KeyedList {
   const char* key;
   std::vector<const char*> rows;
@@ -31,6 +34,7 @@ const KeyedList kKeyed[] = {
     {"simulation/wall_contact/near_key",
      {"simulation/wall_contact/near_k", "simulation/wall_contact/stick"}},
     {"simulation/wall_contact/reach_surface", {"simulation/wall_contact/reach_reference"}},
+    {"simulation/body_contact/pairs", {}},
 };
 
 // Every array Simulation::exchange_state saves that is not alike on every rank. (What is
@@ -53,11 +57,7 @@ Spread spread_of(const std::string& path) {
       "model/strain_energy_density",
       "simulation/element_mass_scale",
   };
-  static const char* const not_yet[] = {
-      "simulation/body_contact/pairs",
-      "simulation/body_contact/active_tets",
-      "simulation/body_contact/verlet_reference",
-  };
+
   for (const KeyedList& k : kKeyed) {
     if (path == k.key) return Spread::keyed;
     for (const char* r : k.rows)
@@ -68,13 +68,19 @@ Spread spread_of(const std::string& path) {
     if (path == n) return Spread::node;
   for (const char* e : element)
     if (path == e) return Spread::element;
-  for (const char* n : not_yet)
-    if (path == n) return Spread::not_yet;
+  if (path == "simulation/body_contact/active_tets") return Spread::derived;
+  if (path == "simulation/body_contact/verlet_reference") return Spread::contact_node;
   return Spread::same;
 }
 
-// The key of row i of a key array (4- or 8-byte unsigned integers).
+// The key of row i of a key array (4- or 8-byte unsigned integers, or rows that start with
+// two 4-byte ones).
 std::uint64_t key_at(const MemoryArchive::Entry& e, std::size_t i) {
+  if (e.item_bytes > 8) {
+    std::uint32_t k[2];
+    std::memcpy(k, e.data.data() + e.item_bytes * i, 8);
+    return std::uint64_t{k[0]} << 32 | k[1];
+  }
   if (e.item_bytes == 4) {
     std::uint32_t k;
     std::memcpy(&k, e.data.data() + 4 * i, 4);
@@ -142,6 +148,18 @@ std::vector<std::int32_t> owned_ids(const std::vector<std::int32_t>& rank_of, in
   return ids;
 }
 
+// The nodes of contact sub-tetrahedra, ascending (BodyContact's Verlet list: its rows).
+std::vector<std::int32_t> contact_nodes(const std::vector<std::array<std::int32_t, 4>>& tets,
+                                        std::int32_t node_count) {
+  std::vector<char> used(node_count, 0);
+  for (const auto& t : tets)
+    for (std::int32_t n : t) used[n] = 1;
+  std::vector<std::int32_t> nodes;
+  for (std::int32_t n = 0; n < node_count; ++n)
+    if (used[n]) nodes.push_back(n);
+  return nodes;
+}
+
 // Items per row of an array of `count` items over `rows` rows.
 std::size_t row_width(const MemoryArchive::Entry& e, std::size_t rows) {
   if (e.count == 0) return 0;
@@ -186,13 +204,29 @@ void gather_state(Simulation& local, const Distribution& dist, const Partition& 
     if (part.node_owned[k]) owned_nodes.push_back(static_cast<std::int32_t>(k));
   for (std::size_t k = 0; k < part.elements.size(); ++k)
     if (part.element_owned[k]) owned_elements.push_back(static_cast<std::int32_t>(k));
+  // (the contact nodes' rows: a rank's held ones, of which it sends those it owns)
+  const Model& lm = local.model();
+  std::vector<std::int32_t> owned_contact_nodes;
+  {
+    const std::vector<std::int32_t> held = contact_nodes(lm.contact_tets, lm.node_count);
+    for (std::size_t k = 0; k < held.size(); ++k)
+      if (part.node_owned[held[k]]) owned_contact_nodes.push_back(static_cast<std::int32_t>(k));
+  }
   for (const MemoryArchive::Entry& e : mine.entries()) {
     const Spread s = spread_of(e.path);
-    if (s == Spread::not_yet && e.count != 0)
-      throw std::logic_error("state '" + e.path + "' is not gathered from the ranks yet");
     if (what == GatheredState::outputs && !read_by_outputs(e.path)) continue;
     if (s == Spread::keyed || s == Spread::summed) {
       owned.entries().push_back(e);
+      continue;
+    }
+    if (s == Spread::contact_node) {
+      MemoryArchive::Entry rows{e.path, e.type, e.item_bytes, 0, {}};
+      if (e.count > 0) {
+        const std::size_t held = contact_nodes(lm.contact_tets, lm.node_count).size();
+        take_rows(e.data, rows.data, owned_contact_nodes, row_width(e, held) * e.item_bytes);
+        rows.count = rows.data.size() / e.item_bytes;
+      }
+      owned.entries().push_back(std::move(rows));
       continue;
     }
     if (s != Spread::node && s != Spread::element) continue;
@@ -222,6 +256,8 @@ void gather_state(Simulation& local, const Distribution& dist, const Partition& 
   std::vector<MemoryArchive> from_ranks;
   for (int r = 0; r < comm.size(); ++r) from_ranks.emplace_back(all[r]);
   if (what == GatheredState::everything) merge_keyed(from_ranks, w);
+  const std::vector<std::int32_t> whole_contact_nodes =
+      contact_nodes(whole->model().contact_tets, whole->model().node_count);
   for (int r = 0; r < comm.size(); ++r) {
     const MemoryArchive& from = from_ranks[r];
     const std::vector<std::int32_t> nodes = owned_ids(p.node_rank, r);
@@ -230,6 +266,24 @@ void gather_state(Simulation& local, const Distribution& dist, const Partition& 
       MemoryArchive::Entry* to = w.find(e.path);
       const Spread s = spread_of(e.path);
       if (s == Spread::keyed) continue;
+      if (s == Spread::contact_node) {
+        // every rank's rows, or none (no list built yet): the whole list's length
+        std::vector<std::int32_t> rows;
+        for (std::size_t k = 0; k < whole_contact_nodes.size(); ++k)
+          if (p.node_rank[whole_contact_nodes[k]] == r)
+            rows.push_back(static_cast<std::int32_t>(k));
+        if (rows.empty()) continue;
+        if (e.count == 0) {
+          to->count = 0;
+          to->data.clear();
+          continue;
+        }
+        const std::size_t width = e.count / rows.size();
+        to->count = width * whole_contact_nodes.size();
+        to->data.resize(to->count * e.item_bytes);
+        put_rows(e.data, to->data, rows, width * e.item_bytes);
+        continue;
+      }
       if (s == Spread::summed) {  // (plain, in rank order)
         double total = 0.0, x = 0.0;
         if (r > 0) std::memcpy(&total, to->data.data(), sizeof total);
@@ -272,11 +326,24 @@ void scatter_state(Simulation* whole, Simulation& local, const Distribution& dis
     const MemoryArchive::Entry* src = from.find(e.path);
     if (src == nullptr) throw CheckpointError("state '" + e.path + "' is missing");
     const Spread s = spread_of(e.path);
-    if (s == Spread::not_yet && src->count != 0)
-      throw CheckpointError("state '" + e.path + "' cannot be handed to " +
-                            std::to_string(comm.size()) +
-                            " ranks yet (contact across ranks is not built)");
-    if (s == Spread::same || s == Spread::not_yet || s == Spread::keyed) {
+    if (s == Spread::contact_node) {
+      // this rank's held contact nodes' rows, found by global id in the whole model's list
+      const std::vector<std::int32_t> whole =
+          contact_nodes(part.contact_tets, part.global_node_count);
+      const Model& lm = local.model();
+      std::vector<std::int32_t> rows;
+      for (std::int32_t n : contact_nodes(lm.contact_tets, lm.node_count))
+        rows.push_back(static_cast<std::int32_t>(
+            std::lower_bound(whole.begin(), whole.end(), part.nodes[n]) - whole.begin()));
+      const std::size_t width = row_width(*src, whole.size());
+      e.count = width * rows.size();
+      if (width > 0)
+        take_rows(src->data, e.data, rows, width * e.item_bytes);
+      else
+        e.data.clear();
+      continue;
+    }
+    if (s == Spread::same || s == Spread::derived || s == Spread::keyed) {
       e.count = src->count;
       e.data = src->data;
       continue;

@@ -6,7 +6,8 @@
 // any number of ranks) is handed to the ranks from it. The state is what
 // Simulation::exchange_state archives: arrays with a row per node (positions, velocities, ...),
 // a row per element (Gauss-point states, stresses, ...), or the same on every rank (time, step,
-// energy accounts, walls). A row comes from the rank that owns its node or element.
+// energy accounts, walls), or lists keyed by a global key (the walls' near lists, the contact
+// pairs between bodies). A row comes from the rank that owns its node or element.
 #include <string>
 
 #include "engine/distributed/distribution.hpp"
@@ -31,8 +32,7 @@ void gather_state(Simulation& local, const Distribution& dist, const Partition& 
                   Simulation* whole, GatheredState what = GatheredState::everything);
 
 // Every rank calls it; `local` then holds its part of `whole` (rank 0's; null elsewhere), e.g.
-// after rank 0 read a checkpoint. Throws CheckpointError for a state this many ranks cannot
-// take yet (contact pairs and wall springs: see docs/ARCHITECTURE.md).
+// after rank 0 read a checkpoint. Throws CheckpointError for a state array missing from it.
 void scatter_state(Simulation* whole, Simulation& local, const Distribution& dist);
 
 }  // namespace femdem

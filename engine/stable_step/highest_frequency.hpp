@@ -20,6 +20,7 @@
 // the start vector by the global dofs.
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "engine/distributed/distribution.hpp"
@@ -39,6 +40,14 @@ struct ContactSpring {
   double k = 0.0;
 };
 
+// Nodes of other ranks that this rank's contact springs reach (engine/body_contact.hpp): a
+// spring's node nn + k (nn the local node count) is the k-th of them, and `lists` bring their
+// values from the ranks that own them.
+struct ForeignNodes {
+  std::int32_t count = 0;
+  std::span<const LocalPart::Neighbour> lists;
+};
+
 struct FrequencyEstimate {
   double omega = 0.0;      // rad/s, the estimate (Ritz value + residual), 0 when nothing moves
   double ritz = 0.0;       // rad/s, the Ritz value alone (a lower bound of the true one)
@@ -53,8 +62,9 @@ class HighestFrequency {
   explicit HighestFrequency(const Model& m, int max_iterations = 24, double tolerance = 0.01);
 
   // `dist`: this rank's part of a distributed run (the estimate is then the whole model's).
+  // `foreign`: the other ranks' nodes its springs reach.
   FrequencyEstimate estimate(const Model& m, const std::vector<ContactSpring>& springs,
-                             const Distribution* dist = nullptr);
+                             const Distribution* dist = nullptr, ForeignNodes foreign = {});
 
   // Applies K (elements at the current shape and the springs) to u, 3 per node: for tests.
   void apply_stiffness(const Model& m, const std::vector<ContactSpring>& springs, const double* u,
@@ -68,6 +78,7 @@ class HighestFrequency {
   void apply(const Model& m, const std::vector<ContactSpring>& springs, const double* v, double* y);
   double dot(const double* a, const double* b);
   const Distribution* dist_ = nullptr;  // of the estimate under way
+  ForeignNodes foreign_;
 
   int max_iterations_;
   double tolerance_;

@@ -5,12 +5,16 @@
 // started on 2 ranks resumes on 1 and one started in one process resumes on 3, each equal to
 // the run made straight through; and what ranks cannot do yet is refused alike.
 //
-// The scenes are one body cut among the ranks (contact between bodies across ranks is not
-// built yet): an elastic bar vibrating along its length on rollers with a fixed end (as
-// scenes/bar_vibration.toml); a von Mises bar with nodal F-bar (three ghost layers) moving at
-// 11 m/s with one end held, yielded by the wave from the held end (rho c v = 150 MPa against
-// a yield stress of 30 MPa); a coarse Taylor bar on its anvil; a Drucker-Prager block pressed
-// in a die with friction by a force-driven punch.
+// The scenes: one body cut among the ranks: an elastic bar vibrating along its length on
+// rollers with a fixed end (as scenes/bar_vibration.toml); a von Mises bar with nodal F-bar
+// (three ghost layers) moving at 11 m/s with one end held, yielded by the wave from the held
+// end (rho c v = 150 MPa against a yield stress of 30 MPa); a coarse Taylor bar on its anvil;
+// a Drucker-Prager block pressed in a die with friction by a force-driven punch. Bodies in
+// contact across ranks: the Hertz pair (scenes/hertz_two_spheres.toml, coarse: each sphere
+// whole on 2 ranks, both cut on 3); eight spheres colliding obliquely with friction and
+// deformation damping on a rough floor (whole bodies on 2 and 3 ranks), and again with impact
+// damping and rolling resistance; the 64-sphere compaction (scenes/compaction_64_spheres.toml)
+// in small.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -171,6 +175,109 @@ const std::string kTaylorBarScaled = [] {
   return t;
 }();
 
+// scenes/hertz_two_spheres.toml coarse: two steel spheres head-on at 0.5 m/s each.
+const char* const kHertzPair = R"(title = "distributed: Hertz pair"
+[simulation]
+end_time = 100e-6
+output_interval = 10e-6
+history_interval = 1e-6
+checkpoint_interval = 25e-6
+
+[[materials]]
+name = "steel"
+model = "elastic"
+density = 7850.0
+youngs_modulus = 210e9
+poisson_ratio = 0.3
+
+[[bodies]]
+name = "upper"
+material = "steel"
+mesh = { generator = "sphere", radius = 0.01, element_size = 4e-3 }
+position = [0.0, 0.0, 0.010001]
+velocity = [0.0, 0.0, -0.5]
+
+[[bodies]]
+name = "lower"
+material = "steel"
+mesh = { generator = "sphere", radius = 0.01, element_size = 4e-3 }
+position = [0.0, 0.0, -0.010001]
+velocity = [0.0, 0.0, 0.5]
+)";
+
+// Spheres meeting obliquely with friction, over a rough floor, under gravity and
+// deformation damping: sticking and sliding pairs between ranks, their friction springs carried
+// across rebuilds and checkpoints.
+const std::string kSpheres = [] {
+  std::string t = R"(title = "distributed: spheres in contact"
+[simulation]
+end_time = 1.5e-4
+output_interval = 2.5e-5
+history_interval = 2.5e-6
+checkpoint_interval = 2.5e-5
+gravity = [0.0, 0.0, -9.81]
+deformation_damping = { ratio = 0.05, frequency = 5000.0 }
+
+[[materials]]
+name = "steel"
+model = "von_mises"
+density = 7850.0
+youngs_modulus = 210e9
+poisson_ratio = 0.3
+yield_stress = 300e6
+hardening_modulus = 1e9
+
+[contact]
+friction = 0.3
+
+[[walls]]
+name = "floor"
+point = [0.0, 0.0, -0.0102]
+normal = [0.0, 0.0, 1.0]
+friction = 0.4
+)";
+  // two layers of four, the second moving onto the first (eight whole bodies on 2 and 3 ranks)
+  const char* const bodies[8][3] = {{"a", "[0.0, 0.0, 0.0]", "[3.0, 0.0, -1.0]"},
+                                    {"b", "[0.0201, 0.003, 0.0]", "[-3.0, 0.0, 0.0]"},
+                                    {"c", "[0.001, 0.0, 0.0201]", "[0.0, 1.0, -3.0]"},
+                                    {"d", "[0.0212, 0.003, 0.0201]", "[-2.0, 0.0, -2.0]"},
+                                    {"e", "[0.0, 0.0204, 0.0]", "[3.0, -2.0, -1.0]"},
+                                    {"f", "[0.0201, 0.0234, 0.0]", "[-3.0, -2.0, 0.0]"},
+                                    {"g", "[0.001, 0.0204, 0.0201]", "[0.0, -1.0, -3.0]"},
+                                    {"h", "[0.0212, 0.0234, 0.0201]", "[-2.0, -2.0, -2.0]"}};
+  for (const auto& b : bodies)
+    t += std::string("\n[[bodies]]\nname = \"") + b[0] +
+         "\"\nmaterial = \"steel\"\nmesh = { generator = \"sphere\", radius = 0.01, "
+         "element_size = 5e-3 }\nposition = " +
+         b[1] + "\nvelocity = " + b[2] + "\n";
+  return t;
+}();
+
+// The same with impact damping and rolling resistance on every patch (between bodies of two
+// ranks: each rank loads its own body with the other's rigid motion; on the floor).
+const std::string kSpheresDamped = [] {
+  std::string t = kSpheres;
+  const std::string at = "friction = 0.3\n";
+  t.insert(t.find(at) + at.size(), "impact_damping = 0.3\nrolling_resistance = 0.05\n");
+  return t;
+}();
+
+// scenes/compaction_64_spheres.toml in small: the 64 spheres at one cell per radius, 40 us of
+// a lid driven at 10 m/s ([compaction]'s columns sum the powder's volume over the ranks).
+const std::string kCompaction64 = [] {
+  std::string t = read_text(fs::path(FEMDEM_SOURCE_DIR) / "scenes/compaction_64_spheres.toml");
+  auto replace = [&](const std::string& from, const std::string& to) {
+    t.replace(t.find(from), from.size(), to);
+  };
+  replace("end_time = 2.76e-3", "end_time = 4e-5\ncheckpoint_interval = 1e-5");
+  replace("output_interval = 5.52e-5", "output_interval = 1e-5");
+  replace("cells_per_radius = 2", "cells_per_radius = 1");
+  // (the lid at 10 m/s from the start: the spheres are pressed together within the test's time)
+  replace("velocity_history = [[0.0, 0.0, 0.0, 0.0], [2e-4, 0.0, 0.0, -1.0]]",
+          "velocity_history = [[0.0, 0.0, 0.0, -10.0], [1.0, 0.0, 0.0, -10.0]]");
+  return t;
+}();
+
 struct SceneCase {
   const char* text;
   const char* half_time;  // where the resume tests stop the first run
@@ -182,6 +289,10 @@ SceneCase scene_case(const std::string& name) {
   if (name == "plastic_bar") return {kPlasticBar, "1e-4", "2e-4"};
   if (name == "taylor_bar") return {kTaylorBar, "8e-6", "16e-6"};
   if (name == "taylor_bar_mass_scaling") return {kTaylorBarScaled.c_str(), "8e-6", "16e-6"};
+  if (name == "hertz_pair") return {kHertzPair, "40e-6", "100e-6"};
+  if (name == "spheres") return {kSpheres.c_str(), "7.5e-5", "1.5e-4"};
+  if (name == "spheres_damped") return {kSpheresDamped.c_str(), "7.5e-5", "1.5e-4"};
+  if (name == "compaction_64") return {kCompaction64.c_str(), "2e-5", "4e-5"};
   return {kDiePress.c_str(), "6e-5", "1.2e-4"};
 }
 
@@ -232,8 +343,14 @@ TEST_P(DistributedRun, TwoAndThreeRanksWriteWhatOneProcessWrites) {
     const CommandResult c = run(ranks, scene, out);
     ASSERT_EQ(c.code, 0) << c.output;
     expect_same_run(one, out);
-    EXPECT_NE(read_text(out / "run.log").find("in each of " + std::to_string(ranks) + " ranks"),
-              std::string::npos);
+    const std::string log = read_text(out / "run.log");
+    EXPECT_NE(log.find("in each of " + std::to_string(ranks) + " ranks"), std::string::npos);
+    // bodies in contact across ranks: some pairs had a sub-tet of another rank's body
+    const std::string received = "contact nodes of other ranks' bodies received a step: ";
+    if (const auto at = log.find(received); at != std::string::npos)
+      EXPECT_GT(std::stod(log.substr(at + received.size())), 0.0) << log;
+    else
+      EXPECT_TRUE(GetParam().find("bar") != std::string::npos || GetParam() == "die_press") << log;
   }
 }
 
@@ -261,6 +378,9 @@ TEST_P(DistributedRun, ResumesOnAnotherNumberOfRanks) {
 INSTANTIATE_TEST_SUITE_P(Bars, DistributedRun, ::testing::Values("elastic_bar", "plastic_bar"));
 INSTANTIATE_TEST_SUITE_P(Walls, DistributedRun,
                          ::testing::Values("taylor_bar", "die_press", "taylor_bar_mass_scaling"));
+INSTANTIATE_TEST_SUITE_P(Contact, DistributedRun,
+                         ::testing::Values("hertz_pair", "spheres", "spheres_damped",
+                                           "compaction_64"));
 
 const char* const kMetal = R"([[materials]]
 name = "metal"
@@ -283,6 +403,9 @@ TEST(DistributedRunRefusal, WhatRanksCannotDoYetExitsTwoFromEveryRankWithOneMess
 [simulation]
 end_time = 1e-5
 
+[contact]
+impact_damping = 0.5
+
 )" + std::string(kMetal) + R"(
 [[bodies]]
 name = "a"
@@ -296,9 +419,10 @@ mesh = { generator = "box", size = [0.01, 0.01, 0.01], element_size = 0.005 }
 position = [0.0, 0.0, 0.02]
 )");
   const fs::path out = tmp_dir() / "two_bodies";
-  const CommandResult c = run(2, scene, out);
+  // (two bodies on 3 ranks: each is cut, its patches summed per rank)
+  const CommandResult c = run(3, scene, out);
   // one message, from rank 0, naming what is missing
-  expect_refused_once(c, "more than one body");
+  expect_refused_once(c, "impact_damping or rolling_resistance on a body cut among ranks");
   EXPECT_FALSE(fs::exists(out / "results.h5"));
   // a scene too small for the ranks: two elements on 3 ranks
   const fs::path tiny = write_scene("two_elements", (std::string(R"(title = "two elements"

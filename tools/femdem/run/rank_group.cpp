@@ -77,6 +77,7 @@ void RankGroup::sample(HistorySample& s) {
   const Timed t(times_.sample_s);
   send(Command::sample);
   take_sample(*local_, s);
+  if (!volume_of_.empty()) volume_ = local_->bodies_volume(volume_of_);
 }
 
 void RankGroup::gather(Simulation& view, GatheredState what) {
@@ -115,6 +116,7 @@ void RankGroup::follow() {
         break;
       case Command::sample:
         take_sample(*local_, sample_);
+        if (!volume_of_.empty()) volume_ = local_->bodies_volume(volume_of_);
         break;
       case Command::gather_outputs:
         gather_state(*local_, dist_, partition_, nullptr, GatheredState::outputs);

@@ -48,8 +48,13 @@ class RankGroup {
   // Every body's motion (Simulation::body_motions) on rank 0.
   void body_motions(std::vector<BodyState>& out);
   void gather(Simulation& view, GatheredState what);
-  // A history row's figures (take_sample) from the parts, on rank 0.
+  // A history row's figures (take_sample) from the parts, on rank 0, and the volume of the
+  // bodies of measure_volume_of() (the compaction columns: powder_volume()).
   void sample(HistorySample& s);
+  // Every rank, before the first sample: the bodies (a mask per body) whose deformed volume
+  // each sample measures.
+  void measure_volume_of(std::vector<std::uint8_t> bodies) { volume_of_ = std::move(bodies); }
+  double powder_volume() const { return volume_; }
   // Every part takes its state from the view (after it read a checkpoint).
   void scatter(Simulation& view);
   void stop();
@@ -80,6 +85,8 @@ class RankGroup {
   std::unique_ptr<Simulation> local_;
   std::vector<BodyState> motions_;  // followers' scratch
   HistorySample sample_;
+  std::vector<std::uint8_t> volume_of_;
+  double volume_ = 0.0;
   std::vector<std::int64_t> ghosts_sent_;
   Times times_;
   bool stopped_ = false;

@@ -264,12 +264,10 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
   // model's Simulation as the view that is written, the others follow its commands.
   std::optional<RankGroup> ranks;
   if (const Communicator& world = Communicator::world(); world.size() > 1) {
-    if (spec.compaction)
-      throw InputError(
-          "distributed runs cannot yet do this scene: [compaction] (issue 23, "
-          "docs/ARCHITECTURE.md \"Distributed runs\"); run it as one process",
-          scene.path);
     ranks.emplace(whole_model, world);
+    // (the compaction columns' solid volume: summed by all ranks at each history row)
+    if (spec.compaction)
+      ranks->measure_volume_of(CompactionMonitor::powder_of(whole_model, *spec.compaction));
     if (world.rank() != 0) {
       whole_model = Model{};      // (only rank 0 keeps the whole model)
       const StopSignals signals;  // (rank 0 decides when to stop)
@@ -442,7 +440,9 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
       take_sample(sim, sample);
     if (compaction) {
       const auto t0 = Clock::now();
-      sample.compaction = compaction->sample(sim);
+      // (on ranks: the walls as every part has them, the volume the ranks summed)
+      sample.compaction = ranks ? compaction->sample(ranks->part(), ranks->powder_volume())
+                                : compaction->sample(sim, sim.bodies_volume(compaction->powder()));
       curve->sample_time_s += seconds_since(t0);
       curve->observe(*sample.compaction);
     }
@@ -572,6 +572,14 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
                   "%.3g s gathering frames and checkpoints",
                   t.step_s, t.body_motions_s, t.sample_s, t.gather_s);
     log.file_only(std::string(buf) + "\n");
+    if (ranks->part().body_contact().active()) {
+      const double n = ranks->part().body_contact().foreign_nodes_per_step();
+      std::snprintf(buf, sizeof buf,
+                    "contact nodes of other ranks' bodies received a step: %.1f in all (%.4g kB), "
+                    "on average",
+                    n, 48e-3 * n);
+      log.file_only(std::string(buf) + "\n");
+    }
   }
   if (compaction && !options.plot_script.empty()) plot_compaction(options.plot_script, out, log);
   return 0;
