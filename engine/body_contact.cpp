@@ -181,6 +181,10 @@ void BodyContact::update_candidates(const Model& m) {
   if (dist_) near_k_over_m_ = -dist_->comm->min(-near_k_over_m_);
   // A pair that drops out of the list is far apart: its spring was released when it stopped
   // touching (evaluate() zeroes it then), so nothing is lost here.
+  list_pair_tets();
+}
+
+void BodyContact::list_pair_tets() {
   results_.resize(pairs_.size());
   evaluated_.assign(pairs_.size(), 0);
   active_tets_.clear();
@@ -677,15 +681,7 @@ void BodyContact::exchange_state(StateArchive& a) {
     resubscribe_ = true;  // (the foreign sub-tets' lists, at the next step: every rank loads)
   }
   // the sub-tets of the pairs, and the per-pair slots of the next step, as a rebuild leaves them
-  active_tets_.clear();
-  for (const Pair& p : pairs_) {
-    active_tets_.push_back(p.i);
-    active_tets_.push_back(p.j);
-  }
-  std::sort(active_tets_.begin(), active_tets_.end());
-  active_tets_.erase(std::unique(active_tets_.begin(), active_tets_.end()), active_tets_.end());
-  results_.resize(pairs_.size());
-  evaluated_.assign(pairs_.size(), 0);
+  list_pair_tets();
 }
 
 }  // namespace femdem

@@ -24,6 +24,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "contact/contact_laws.hpp"
@@ -95,6 +96,13 @@ class BodyContact final : public ContactModel {
   ForeignNodes foreign_nodes() const {
     return {static_cast<std::int32_t>(foreign_nodes_.size()), contact_lists_};
   }
+  // Adds to per_body[b] the listed pairs with a sub-tet of body b held here (the contact work of
+  // each body on this rank, for rebalancing).
+  void count_pairs_per_body(std::span<double> per_body) const {
+    for (const Pair& p : pairs_)
+      for (std::uint32_t t : {p.i, p.j})
+        if (here_[t]) per_body[tet_body_[t]] += 1.0;
+  }
   // Distributed runs: the other ranks' nodes received per step by all ranks (positions and
   // velocities, 48 bytes each), on average over the steps since the start or the resume.
   double foreign_nodes_per_step() const {
@@ -122,6 +130,8 @@ class BodyContact final : public ContactModel {
   };
 
   void update_candidates(const Model& m);
+  // The sub-tets of the listed pairs (active_tets_) and the pairs' slots for the next step.
+  void list_pair_tets();
   // The corners and boxes of the sub-tets listed.
   void update_tet_boxes(const Model& m, const std::vector<std::uint32_t>& tets);
   void gather_patches();

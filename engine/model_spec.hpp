@@ -88,6 +88,10 @@ struct SimulationSettings {
   // of its peak for rest_hold_time, so that a settling scene needs no guessed end_time.
   double rest_kinetic_fraction = 0.0;
   double rest_hold_time = 0.0;  // s; 0: one output interval
+  // Distributed runs: at each frame, when the busiest rank's work (held elements and contact
+  // pairs) exceeds the mean by at least this fraction, the bodies are dealt to the ranks again
+  // from their current centroids (docs/ARCHITECTURE.md, "Distributed runs"); negative: never.
+  double rebalance_threshold = 0.1;
 };
 
 struct BodySpec {

@@ -17,6 +17,7 @@ namespace {
 struct Piece {
   std::vector<std::int32_t> elements;  // ascending
   Vec3 centroid = Vec3::Zero();        // of its elements' corner nodes, current positions
+  double weight = 0.0;                 // its elements, plus its share of its body's extra
 };
 
 Vec3 corner_centroid(const Model& m, const std::vector<std::int32_t>& elements) {
@@ -81,8 +82,7 @@ void bisect(const Model& m, std::vector<Piece>& pieces, std::vector<std::int32_t
             });
   const int n_left = n / 2;
   double total = 0.0;
-  for (std::size_t k = lo; k < hi; ++k)
-    total += static_cast<double>(pieces[order[k]].elements.size());
+  for (std::size_t k = lo; k < hi; ++k) total += pieces[order[k]].weight;
   const double target = total * n_left / n;
   // each side keeps at least as many pieces as it has ranks
   const std::size_t first = lo + static_cast<std::size_t>(n_left);
@@ -94,7 +94,7 @@ void bisect(const Model& m, std::vector<Piece>& pieces, std::vector<std::int32_t
       best = std::fabs(left - target);
       split = k;
     }
-    left += static_cast<double>(pieces[order[k]].elements.size());
+    left += pieces[order[k]].weight;
   }
   bisect(m, pieces, order, lo, split, r0, n_left, out);
   bisect(m, pieces, order, split, hi, r0 + n_left, n - n_left, out);
@@ -102,7 +102,7 @@ void bisect(const Model& m, std::vector<Piece>& pieces, std::vector<std::int32_t
 
 }  // namespace
 
-Partition partition_model(const Model& m, int parts) {
+Partition partition_model(const Model& m, int parts, std::span<const double> body_extra) {
   if (parts < 1)
     throw InputError("the number of ranks must be at least 1, got " + std::to_string(parts));
   Partition out;
@@ -110,7 +110,9 @@ Partition partition_model(const Model& m, int parts) {
   out.element_rank.assign(m.element_count, 0);
   const double share = static_cast<double>(m.element_count) / parts;
   std::vector<Piece> pieces;
-  for (const Body& b : m.bodies) {
+  for (std::size_t bi = 0; bi < m.bodies.size(); ++bi) {
+    const Body& b = m.bodies[bi];
+    const std::size_t first_piece = pieces.size();
     const int cuts =
         parts > 1 && b.element_count > kWholeBodyShare * share
             ? std::min(b.element_count,
@@ -124,6 +126,11 @@ Partition partition_model(const Model& m, int parts) {
       std::iota(p.elements.begin(), p.elements.end(), b.first_element);
       pieces.push_back(std::move(p));
     }
+    const double extra = bi < body_extra.size() ? body_extra[bi] : 0.0;
+    for (std::size_t k = first_piece; k < pieces.size(); ++k) {
+      const auto n = static_cast<double>(pieces[k].elements.size());
+      pieces[k].weight = n + (b.element_count > 0 ? extra * n / b.element_count : 0.0);
+    }
   }
   if (static_cast<int>(pieces.size()) < parts)
     throw InputError("the scene cannot be split among " + std::to_string(parts) +
@@ -134,7 +141,13 @@ Partition partition_model(const Model& m, int parts) {
   std::vector<std::int32_t> order(pieces.size());
   std::iota(order.begin(), order.end(), 0);
   bisect(m, pieces, order, 0, pieces.size(), 0, parts, out);
+  return partition_from(m, parts, std::move(out.element_rank));
+}
 
+Partition partition_from(const Model& m, int parts, std::vector<std::int32_t> element_rank) {
+  Partition out;
+  out.parts = parts;
+  out.element_rank = std::move(element_rank);
   out.part_elements.assign(parts, 0);
   for (std::int32_t r : out.element_rank) ++out.part_elements[r];
   out.node_rank.assign(m.node_count, -1);

@@ -10,6 +10,7 @@
 // rank count give the same partition on every rank and every run (no random seed varies).
 // A node belongs to the rank of its lowest-numbered element.
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "engine/model.hpp"
@@ -27,7 +28,13 @@ struct Partition {
 inline constexpr double kWholeBodyShare = 0.5;
 
 // Throws InputError (naming the rank count) when there are fewer pieces than ranks: a scene
-// too small to split this many ways.
-Partition partition_model(const Model& m, int parts);
+// too small to split this many ways. The bisection weighs each piece by its elements, plus
+// body_extra[b] for a body b (its contact work, in elements; a cut body's shared by its pieces
+// as their elements), when given; the centroids are those of the current positions m.x.
+Partition partition_model(const Model& m, int parts, std::span<const double> body_extra = {});
+
+// The partition that deals the elements as element_rank does (nodes to the rank of their
+// lowest-numbered element).
+Partition partition_from(const Model& m, int parts, std::vector<std::int32_t> element_rank);
 
 }  // namespace femdem

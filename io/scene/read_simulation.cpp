@@ -25,11 +25,26 @@ void Reader::read_simulation(const toml::table& root, ModelSpec& spec, toml::tab
   const toml::table& t = require_table(n, "simulation");
   const std::string p = "simulation";
   check_keys(t, p,
-             {"end_time", "time_step_safety", "time_step", "output_interval", "history_interval",
-              "gravity", "threads", "bulk_viscosity_linear", "bulk_viscosity_quadratic",
-              "mass_scaling_time_step", "mass_scaling_limit", "deformation_damping",
-              "rest_kinetic_fraction", "rest_hold_time", "stable_step", "stable_step_interval",
-              "checkpoint_interval", "checkpoint_wall_interval", "energy_balance_limit"});
+             {"end_time",
+              "time_step_safety",
+              "time_step",
+              "output_interval",
+              "history_interval",
+              "gravity",
+              "threads",
+              "bulk_viscosity_linear",
+              "bulk_viscosity_quadratic",
+              "mass_scaling_time_step",
+              "mass_scaling_limit",
+              "deformation_damping",
+              "rest_kinetic_fraction",
+              "rest_hold_time",
+              "rebalance_threshold",
+              "stable_step",
+              "stable_step_interval",
+              "checkpoint_interval",
+              "checkpoint_wall_interval",
+              "energy_balance_limit"});
   SimulationSettings& s = spec.simulation;
   s.end_time = positive(t, "end_time", p, std::nullopt, &t);
   s.time_step_safety = positive(t, "time_step_safety", p, s.time_step_safety, &t);
@@ -130,6 +145,7 @@ void Reader::read_simulation(const toml::table& root, ModelSpec& spec, toml::tab
          "must be 0 (off) or a fraction of the peak kinetic energy in (0, 1), got " +
              format_number(s.rest_kinetic_fraction));
   s.rest_hold_time = number(t, "rest_hold_time", p, 0.0, &t);
+  s.rebalance_threshold = number(t, "rebalance_threshold", p, s.rebalance_threshold, &t);
   if (s.rest_hold_time < 0.0)
     fail(t.get("rest_hold_time"), "simulation.rest_hold_time",
          "must not be negative, got " + format_number(s.rest_hold_time));

@@ -13,9 +13,16 @@ namespace femdem {
 
 RankGroup::RankGroup(const Model& whole, const Communicator& comm)
     : comm_(comm), partition_(partition_model(whole, comm.size())) {
-  dist_.part = local_part(whole, partition_, comm.rank(), ghost_layers(whole));
+  if (comm.rank() != 0) whole_ = whole;
   dist_.comm = &comm_;
+  build_part(whole);
+}
+
+void RankGroup::build_part(const Model& whole) {
+  local_.reset();
+  dist_.part = local_part(whole, partition_, comm_.rank(), ghost_layers(whole));
   local_ = std::make_unique<Simulation>(local_model(whole, dist_.part), dist_);
+  ghosts_sent_.clear();
   std::int64_t sent = 0;
   for (const LocalPart::Neighbour& n : dist_.part.neighbours)
     sent += static_cast<std::int64_t>(n.send.size());
@@ -91,6 +98,63 @@ void RankGroup::scatter(Simulation& view) {
   scatter_state(&view, *local_, dist_);
 }
 
+void RankGroup::measure_work(std::vector<double>* work, std::vector<double>* body_pairs) {
+  const std::size_t bodies = local_->model().bodies.size();
+  std::vector<double> mine(1 + bodies, 0.0);
+  const BodyContact& contact = local_->body_contact();
+  mine[0] = static_cast<double>(dist_.part.elements.size()) +
+            kPairWork * static_cast<double>(contact.candidate_pairs());
+  contact.count_pairs_per_body(std::span<double>(mine).subspan(1));
+  const auto* bytes = reinterpret_cast<const std::byte*>(mine.data());
+  const auto all = comm_.gather({bytes, mine.size() * sizeof(double)});
+  if (comm_.rank() != 0) return;
+  work->clear();
+  body_pairs->assign(bodies, 0.0);
+  for (const std::vector<std::byte>& b : all) {
+    std::vector<double> theirs(1 + bodies);
+    std::memcpy(theirs.data(), b.data(), theirs.size() * sizeof(double));
+    work->push_back(theirs[0]);
+    for (std::size_t k = 0; k < bodies; ++k) (*body_pairs)[k] += theirs[1 + k];
+  }
+}
+
+RankGroup::Rebalance RankGroup::rebalance(Simulation& view, double threshold) {
+  Rebalance r;
+  if (threshold < 0.0) return r;
+  const Timed t(times_.rebalance_s);
+  send(Command::measure_work);
+  std::vector<double> work, body_pairs;
+  measure_work(&work, &body_pairs);
+  double total = 0.0, most = 0.0;
+  for (double w : work) total += w, most = std::max(most, w);
+  r.imbalance = most / (total / static_cast<double>(work.size())) - 1.0;
+  if (!(r.imbalance >= threshold)) return r;
+  for (double& p : body_pairs) p *= kPairWork;
+  Partition next = partition_model(view.model(), comm_.size(), body_pairs);
+  for (std::size_t e = 0; e < next.element_rank.size(); ++e)
+    r.moved += next.element_rank[e] != partition_.element_rank[e];
+  if (r.moved == 0) return r;
+  r.dealt = true;
+  send(Command::redeal);
+  redeal(&view, std::move(next.element_rank));
+  return r;
+}
+
+void RankGroup::redeal(Simulation* view, std::vector<std::int32_t> element_rank) {
+  // the whole state on rank 0, the new partition to every rank, each part built again and
+  // given its rows of that state
+  gather_state(*local_, dist_, partition_, view, GatheredState::everything);
+  std::vector<std::byte> bytes(element_rank.size() * sizeof(std::int32_t));
+  std::memcpy(bytes.data(), element_rank.data(), bytes.size());
+  comm_.broadcast(bytes);
+  element_rank.resize(bytes.size() / sizeof(std::int32_t));
+  std::memcpy(element_rank.data(), bytes.data(), bytes.size());
+  const Model& whole = view ? view->model() : *whole_;
+  partition_ = partition_from(whole, comm_.size(), std::move(element_rank));
+  build_part(whole);
+  scatter_state(view, *local_, dist_);
+}
+
 void RankGroup::stop() {
   stopped_ = true;
   send(Command::stop);
@@ -126,6 +190,12 @@ void RankGroup::follow() {
         break;
       case Command::scatter:
         scatter_state(nullptr, *local_, dist_);
+        break;
+      case Command::measure_work:
+        measure_work(nullptr, nullptr);
+        break;
+      case Command::redeal:
+        redeal(nullptr, {});
         break;
       case Command::stop:
         stopped_ = true;

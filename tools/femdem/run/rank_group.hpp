@@ -8,6 +8,7 @@
 // calls the same collective operations in the same order.
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "engine/distributed/communicator.hpp"
@@ -36,7 +37,7 @@ class RankGroup {
   // Rank 0: wall-clock seconds spent so far in its commands (the steps with their exchanges,
   // the per-step body motions, the gathers for outputs and checkpoints).
   struct Times {
-    double step_s = 0.0, body_motions_s = 0.0, sample_s = 0.0, gather_s = 0.0;
+    double step_s = 0.0, body_motions_s = 0.0, sample_s = 0.0, gather_s = 0.0, rebalance_s = 0.0;
   };
   const Times& times() const { return times_; }
   const Partition& partition() const { return partition_; }
@@ -57,6 +58,22 @@ class RankGroup {
   double powder_volume() const { return volume_; }
   // Every part takes its state from the view (after it read a checkpoint).
   void scatter(Simulation& view);
+  // Measures each rank's work (held elements + kPairWork x listed contact pairs) and, when the
+  // busiest exceeds the mean by at least `threshold` (>= 0), deals the bodies again by the
+  // bisection of their current centroids in the view (current after a frame's gather),
+  // weighted the same way; if that gives another partition, every rank takes its new part's
+  // state from the view (as a resume on another number of ranks does, so the run's bits do
+  // not change). Returns what it found.
+  struct Rebalance {
+    double imbalance = 0.0;  // busiest rank's work over the mean, minus 1
+    bool dealt = false;      // a new partition was taken
+    std::int64_t moved = 0;  // elements that changed rank
+  };
+  Rebalance rebalance(Simulation& view, double threshold);
+  // Work a candidate contact pair costs, in element updates: a pair costs about 0.1 us a step
+  // (4 % touching at 1.5 us, the rest rejected at 40 ns: docs/PERFORMANCE.md), an element
+  // 0.35 us.
+  static constexpr double kPairWork = 0.3;
   void stop();
 
   // The other ranks: carry out rank 0's commands until it stops. Rethrows an InstabilityError
@@ -71,6 +88,8 @@ class RankGroup {
     gather_outputs,
     gather_everything,
     scatter,
+    measure_work,
+    redeal,
     stop
   };
   struct Message {
@@ -78,8 +97,16 @@ class RankGroup {
     double dt_limit = 0.0;
   };
   void send(Command c, double dt_limit = 0.0);
+  // Every rank: its work and its pairs per body, gathered on rank 0 (work per rank, the bodies'
+  // pairs summed).
+  void measure_work(std::vector<double>* work, std::vector<double>* body_pairs);
+  // Every rank: takes the partition rank 0 broadcasts (element_rank, on rank 0) and its part's
+  // state from the view (rank 0's; null elsewhere).
+  void redeal(Simulation* view, std::vector<std::int32_t> element_rank);
+  void build_part(const Model& whole);
 
   const Communicator& comm_;
+  std::optional<Model> whole_;  // the others': the whole model, to cut again (rank 0 has the view)
   Partition partition_;
   Distribution dist_;
   std::unique_ptr<Simulation> local_;

@@ -524,7 +524,21 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
         sim.step(limit);
       observe_step();
       if (schedule.history_due(sim.time())) write_history();
-      if (schedule.frame_due(sim.time()) || rest.at_rest()) write_frame();
+      if (schedule.frame_due(sim.time()) || rest.at_rest()) {
+        write_frame();
+        // (the view has the current positions now: the bisection reads them)
+        if (ranks && !rest.at_rest()) {
+          const RankGroup::Rebalance r = ranks->rebalance(sim, set.rebalance_threshold);
+          if (r.dealt) {
+            char buf[200];
+            std::snprintf(buf, sizeof buf,
+                          "rebalanced at t = %.6g s: the busiest rank's work was %.1f %% above "
+                          "the mean; %lld elements changed rank",
+                          sim.time(), 100.0 * r.imbalance, static_cast<long long>(r.moved));
+            log.file_only(std::string(buf) + "\n");
+          }
+        }
+      }
       // (none after the one before the last steps: a later end time extends the run from it)
       if (signals.received() != 0 || rest.at_rest()) {
         if (!before_last_steps) write_checkpoint_now();
@@ -569,8 +583,8 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
     char buf[200];
     std::snprintf(buf, sizeof buf,
                   "rank 0's loop: %.3g s stepping, %.3g s body motions, %.3g s history rows, "
-                  "%.3g s gathering frames and checkpoints",
-                  t.step_s, t.body_motions_s, t.sample_s, t.gather_s);
+                  "%.3g s gathering frames and checkpoints, %.3g s rebalancing",
+                  t.step_s, t.body_motions_s, t.sample_s, t.gather_s, t.rebalance_s);
     log.file_only(std::string(buf) + "\n");
     if (ranks->part().body_contact().active()) {
       const double n = ranks->part().body_contact().foreign_nodes_per_step();
