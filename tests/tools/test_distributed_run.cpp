@@ -436,7 +436,8 @@ INSTANTIATE_TEST_SUITE_P(Walls, DistributedRun,
 INSTANTIATE_TEST_SUITE_P(Contact, DistributedRun,
                          ::testing::Values("hertz_pair", "spheres_damped", "compaction_64",
                                            "spheres_redealt"));
-INSTANTIATE_TEST_SUITE_P(Bars, DistributedRunResume, ::testing::Values("elastic_bar", "plastic_bar"));
+INSTANTIATE_TEST_SUITE_P(Bars, DistributedRunResume,
+                         ::testing::Values("elastic_bar", "plastic_bar"));
 INSTANTIATE_TEST_SUITE_P(Walls, DistributedRunResume,
                          ::testing::Values("taylor_bar", "die_press", "taylor_bar_mass_scaling"));
 INSTANTIATE_TEST_SUITE_P(Contact, DistributedRunResume,
