@@ -174,35 +174,33 @@ const std::string kTaylorBarScaled = [] {
   return t;
 }();
 
-// scenes/hertz_two_spheres.toml coarse: two steel spheres head-on at 0.5 m/s each.
-const char* const kHertzPair = R"(title = "distributed: Hertz pair"
-[simulation]
-end_time = 100e-6
-output_interval = 10e-6
-history_interval = 1e-6
-checkpoint_interval = 25e-6
+// A steel sphere of radius 1 cm, as a [[bodies]] table.
+std::string sphere(const std::string& name, const std::string& position,
+                   const std::string& velocity, const std::string& element_size = "5e-3") {
+  return "\n[[bodies]]\nname = \"" + name +
+         "\"\nmaterial = \"steel\"\nmesh = { generator = \"sphere\", radius = 0.01, "
+         "element_size = " +
+         element_size + " }\nposition = " + position + "\nvelocity = " + velocity + "\n";
+}
 
+const char* const kElasticSteel = R"(
 [[materials]]
 name = "steel"
 model = "elastic"
 density = 7850.0
 youngs_modulus = 210e9
 poisson_ratio = 0.3
-
-[[bodies]]
-name = "upper"
-material = "steel"
-mesh = { generator = "sphere", radius = 0.01, element_size = 4e-3 }
-position = [0.0, 0.0, 0.010001]
-velocity = [0.0, 0.0, -0.5]
-
-[[bodies]]
-name = "lower"
-material = "steel"
-mesh = { generator = "sphere", radius = 0.01, element_size = 4e-3 }
-position = [0.0, 0.0, -0.010001]
-velocity = [0.0, 0.0, 0.5]
 )";
+
+// scenes/hertz_two_spheres.toml coarse: two steel spheres head-on at 0.5 m/s each.
+const std::string kHertzPair = std::string(R"(title = "distributed: Hertz pair"
+[simulation]
+end_time = 100e-6
+output_interval = 10e-6
+history_interval = 1e-6
+checkpoint_interval = 25e-6
+)") + kElasticSteel + sphere("upper", "[0.0, 0.0, 0.010001]", "[0.0, 0.0, -0.5]", "4e-3") +
+                               sphere("lower", "[0.0, 0.0, -0.010001]", "[0.0, 0.0, 0.5]", "4e-3");
 
 // Spheres meeting obliquely with friction, over a rough floor, under gravity and
 // deformation damping: sticking and sliding pairs between ranks, their friction springs carried
@@ -244,11 +242,7 @@ friction = 0.4
                                     {"f", "[0.0201, 0.0234, 0.0]", "[-3.0, -2.0, 0.0]"},
                                     {"g", "[0.001, 0.0204, 0.0201]", "[0.0, -1.0, -3.0]"},
                                     {"h", "[0.0212, 0.0234, 0.0201]", "[-2.0, -2.0, -2.0]"}};
-  for (const auto& b : bodies)
-    t += std::string("\n[[bodies]]\nname = \"") + b[0] +
-         "\"\nmaterial = \"steel\"\nmesh = { generator = \"sphere\", radius = 0.01, "
-         "element_size = 5e-3 }\nposition = " +
-         b[1] + "\nvelocity = " + b[2] + "\n";
+  for (const auto& b : bodies) t += sphere(b[0], b[1], b[2]);
   return t;
 }();
 
@@ -282,7 +276,7 @@ const std::string kCompaction64 = [] {
 // centroids cuts along x at the start and along y after about 40 us, so with
 // rebalance_threshold = 0 the ranks re-deal them at a frame, and the run goes on as one
 // process's.
-const char* const kSpheresRedealt = R"(title = "distributed: re-dealt spheres"
+const std::string kSpheresRedealt = std::string(R"(title = "distributed: re-dealt spheres"
 [simulation]
 end_time = 2.5e-4
 output_interval = 2.5e-5
@@ -290,44 +284,13 @@ history_interval = 2.5e-6
 checkpoint_interval = 5e-5
 rebalance_threshold = 0.0
 
-[[materials]]
-name = "steel"
-model = "elastic"
-density = 7850.0
-youngs_modulus = 210e9
-poisson_ratio = 0.3
-
 [contact]
 friction = 0.3
-
-[[bodies]]
-name = "left_low"
-material = "steel"
-mesh = { generator = "sphere", radius = 0.01, element_size = 5e-3 }
-position = [0.0, 0.0, 0.0]
-velocity = [3.0, -3.0, 0.0]
-
-[[bodies]]
-name = "right_low"
-material = "steel"
-mesh = { generator = "sphere", radius = 0.01, element_size = 5e-3 }
-position = [0.021, 0.0, 0.0]
-velocity = [-3.0, -3.0, 0.0]
-
-[[bodies]]
-name = "left_high"
-material = "steel"
-mesh = { generator = "sphere", radius = 0.01, element_size = 5e-3 }
-position = [0.0, 0.0205, 0.0]
-velocity = [3.0, 3.0, 0.0]
-
-[[bodies]]
-name = "right_high"
-material = "steel"
-mesh = { generator = "sphere", radius = 0.01, element_size = 5e-3 }
-position = [0.021, 0.0205, 0.0]
-velocity = [-3.0, 3.0, 0.0]
-)";
+)") + kElasticSteel + sphere("left_low", "[0.0, 0.0, 0.0]", "[3.0, -3.0, 0.0]") +
+                                    sphere("right_low", "[0.021, 0.0, 0.0]", "[-3.0, -3.0, 0.0]") +
+                                    sphere("left_high", "[0.0, 0.0205, 0.0]", "[3.0, 3.0, 0.0]") +
+                                    sphere("right_high", "[0.021, 0.0205, 0.0]",
+                                           "[-3.0, 3.0, 0.0]");
 
 struct SceneCase {
   const char* text;
@@ -340,10 +303,10 @@ SceneCase scene_case(const std::string& name) {
   if (name == "plastic_bar") return {kPlasticBar, "1e-4", "2e-4"};
   if (name == "taylor_bar") return {kTaylorBar, "8e-6", "16e-6"};
   if (name == "taylor_bar_mass_scaling") return {kTaylorBarScaled.c_str(), "8e-6", "16e-6"};
-  if (name == "hertz_pair") return {kHertzPair, "40e-6", "100e-6"};
+  if (name == "hertz_pair") return {kHertzPair.c_str(), "40e-6", "100e-6"};
   if (name == "spheres_damped") return {kSpheresDamped.c_str(), "7.5e-5", "1.5e-4"};
   if (name == "compaction_64") return {kCompaction64.c_str(), "1e-5", "2e-5"};
-  if (name == "spheres_redealt") return {kSpheresRedealt, "1.25e-4", "2.5e-4"};
+  if (name == "spheres_redealt") return {kSpheresRedealt.c_str(), "1.25e-4", "2.5e-4"};
   return {kDiePress.c_str(), "6e-5", "1.2e-4"};
 }
 
