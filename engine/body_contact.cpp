@@ -405,7 +405,7 @@ void append_bytes(std::vector<std::byte>& out, const T* data, std::size_t count)
 template <class T>
 std::vector<T> read_bytes(const std::vector<std::byte>& in, std::size_t& at, std::size_t count) {
   std::vector<T> v(count);
-  std::memcpy(v.data(), in.data() + at, count * sizeof(T));
+  if (count > 0) std::memcpy(v.data(), in.data() + at, count * sizeof(T));
   at += count * sizeof(T);
   return v;
 }
