@@ -272,13 +272,13 @@ const std::string kCompaction64 = [] {
 }();
 
 // Four spheres in a square whose spread turns from x to y (the left and right ones close in,
-// the lower and upper ones part) before the left and right ones meet: the bisection of their
-// centroids cuts along x at the start and along y after about 40 us, so with
-// rebalance_threshold = 0 the ranks re-deal them at a frame, and the run goes on as one
-// process's.
+// the lower and upper ones part; they would meet at 170 us): the bisection of their centroids
+// cuts along x at the start and along y after about 40 us, so with rebalance_threshold = 0 the
+// ranks re-deal them at the frame of 50 us, and the run goes on as one process's. (Bodies in
+// contact re-dealt: the sphere scene on 3 ranks, at the default threshold.)
 const std::string kSpheresRedealt = std::string(R"(title = "distributed: re-dealt spheres"
 [simulation]
-end_time = 2.5e-4
+end_time = 1.5e-4
 output_interval = 2.5e-5
 history_interval = 2.5e-6
 checkpoint_interval = 5e-5
@@ -306,7 +306,7 @@ SceneCase scene_case(const std::string& name) {
   if (name == "hertz_pair") return {kHertzPair.c_str(), "40e-6", "100e-6"};
   if (name == "spheres_damped") return {kSpheresDamped.c_str(), "7.5e-5", "1.5e-4"};
   if (name == "compaction_64") return {kCompaction64.c_str(), "1e-5", "2e-5"};
-  if (name == "spheres_redealt") return {kSpheresRedealt.c_str(), "1.25e-4", "2.5e-4"};
+  if (name == "spheres_redealt") return {kSpheresRedealt.c_str(), "7.5e-5", "1.5e-4"};
   return {kDiePress.c_str(), "6e-5", "1.2e-4"};
 }
 
@@ -358,7 +358,9 @@ TEST_P(DistributedRun, TwoAndThreeRanksWriteWhatOneProcessWrites) {
     // bodies in contact across ranks: some pairs had a sub-tet of another rank's body
     const std::string received = "contact nodes of other ranks' bodies received a step: ";
     // (the spheres re-dealt: on 2 ranks, once their spread has turned)
-    if (GetParam() == "spheres_redealt" && ranks == 2)
+    // (and the sphere scene on 3 ranks at the default threshold: bodies in contact re-dealt)
+    if ((GetParam() == "spheres_redealt" && ranks == 2) ||
+        (GetParam() == "spheres_damped" && ranks == 3))
       EXPECT_NE(log.find("rebalanced at t = "), std::string::npos) << log;
     if (const auto at = log.find(received); at != std::string::npos) {
       if (GetParam() != "spheres_redealt")  // (its pairs meet on one rank once re-dealt)

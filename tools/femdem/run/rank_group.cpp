@@ -144,11 +144,12 @@ void RankGroup::redeal(Simulation* view, std::vector<std::int32_t> element_rank)
   // the whole state on rank 0, the new partition to every rank, each part built again and
   // given its rows of that state
   gather_state(*local_, dist_, partition_, view, GatheredState::everything);
+  // (the others' element_rank is empty until the broadcast)
   std::vector<std::byte> bytes(element_rank.size() * sizeof(std::int32_t));
-  std::memcpy(bytes.data(), element_rank.data(), bytes.size());
+  if (!bytes.empty()) std::memcpy(bytes.data(), element_rank.data(), bytes.size());
   comm_.broadcast(bytes);
   element_rank.resize(bytes.size() / sizeof(std::int32_t));
-  std::memcpy(element_rank.data(), bytes.data(), bytes.size());
+  if (!bytes.empty()) std::memcpy(element_rank.data(), bytes.data(), bytes.size());
   const Model& whole = view ? view->model() : *whole_;
   partition_ = partition_from(whole, comm_.size(), std::move(element_rank));
   build_part(whole);
