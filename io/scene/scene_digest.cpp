@@ -54,6 +54,7 @@ const std::vector<std::string>& resumable_keys() {
                                                 "simulation.checkpoint_wall_interval",
                                                 "simulation.rest_kinetic_fraction",
                                                 "simulation.rest_hold_time",
+                                                "simulation.rebalance_threshold",
                                                 "simulation.threads"};
   return keys;
 }

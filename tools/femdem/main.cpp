@@ -137,7 +137,8 @@ Command add_resume(CLI::App& app, const std::string& exe, const std::string& com
       ->add_option("--set", s->options.overrides,
                    "Change what does not alter the past: simulation.end_time, output_interval, "
                    "history_interval, checkpoint_interval, checkpoint_wall_interval, "
-                   "rest_kinetic_fraction, rest_hold_time, threads (KEY=VALUE, repeatable)")
+                   "rest_kinetic_fraction, rest_hold_time, rebalance_threshold, threads "
+                   "(KEY=VALUE, repeatable)")
       ->allow_extra_args(false);
   resume
       ->add_option("--threads", s->options.run.threads,

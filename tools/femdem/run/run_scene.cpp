@@ -454,6 +454,8 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
     schedule.history_written(sim.time());
   };
   std::vector<BodyState> motions;
+  double most_imbalance = 0.0;  // (distributed runs: rebalancing's checks)
+  int redealings = 0;
   auto observe_step = [&] {
     if (ranks)
       ranks->body_motions(motions);
@@ -529,6 +531,8 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
         // (the view has the current positions now: the bisection reads them)
         if (ranks && !rest.at_rest()) {
           const RankGroup::Rebalance r = ranks->rebalance(sim, set.rebalance_threshold);
+          most_imbalance = std::max(most_imbalance, r.imbalance);
+          redealings += r.dealt;
           if (r.dealt) {
             char buf[200];
             std::snprintf(buf, sizeof buf,
@@ -586,6 +590,14 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
                   "%.3g s gathering frames and checkpoints, %.3g s rebalancing",
                   t.step_s, t.body_motions_s, t.sample_s, t.gather_s, t.rebalance_s);
     log.file_only(std::string(buf) + "\n");
+    if (set.rebalance_threshold >= 0.0) {
+      std::snprintf(buf, sizeof buf,
+                    "rebalancing: the bodies re-dealt %d time%s; the busiest rank's work at most "
+                    "%.1f %% above the mean at the frames (threshold %.3g %%)",
+                    redealings, redealings == 1 ? "" : "s", 100.0 * most_imbalance,
+                    100.0 * set.rebalance_threshold);
+      log.file_only(std::string(buf) + "\n");
+    }
     if (ranks->part().body_contact().active()) {
       const double n = ranks->part().body_contact().foreign_nodes_per_step();
       std::snprintf(buf, sizeof buf,
