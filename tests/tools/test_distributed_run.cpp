@@ -208,7 +208,7 @@ checkpoint_interval = 25e-6
 const std::string kSpheres = [] {
   std::string t = R"(title = "distributed: spheres in contact"
 [simulation]
-end_time = 1.5e-4
+end_time = 1.2e-4
 output_interval = 2.5e-5
 history_interval = 2.5e-6
 checkpoint_interval = 2.5e-5
@@ -304,7 +304,7 @@ SceneCase scene_case(const std::string& name) {
   if (name == "taylor_bar") return {kTaylorBar, "8e-6", "16e-6"};
   if (name == "taylor_bar_mass_scaling") return {kTaylorBarScaled.c_str(), "8e-6", "16e-6"};
   if (name == "hertz_pair") return {kHertzPair.c_str(), "40e-6", "100e-6"};
-  if (name == "spheres_damped") return {kSpheresDamped.c_str(), "7.5e-5", "1.5e-4"};
+  if (name == "spheres_damped") return {kSpheresDamped.c_str(), "6e-5", "1.2e-4"};
   if (name == "compaction_64") return {kCompaction64.c_str(), "1e-5", "2e-5"};
   if (name == "spheres_redealt") return {kSpheresRedealt.c_str(), "7.5e-5", "1.5e-4"};
   return {kDiePress.c_str(), "6e-5", "1.2e-4"};

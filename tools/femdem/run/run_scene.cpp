@@ -528,8 +528,8 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
       if (schedule.history_due(sim.time())) write_history();
       if (schedule.frame_due(sim.time()) || rest.at_rest()) {
         write_frame();
-        // (the view has the current positions now: the bisection reads them)
-        if (ranks && !rest.at_rest()) {
+        // (the view has the current positions now: the bisection reads them; none at the end)
+        if (ranks && !rest.at_rest() && !schedule.finished(sim.time())) {
           const RankGroup::Rebalance r = ranks->rebalance(sim, set.rebalance_threshold);
           most_imbalance = std::max(most_imbalance, r.imbalance);
           redealings += r.dealt;
