@@ -61,6 +61,12 @@ void MemoryArchive::index() {
   for (std::size_t i = 0; i < entries_.size(); ++i) by_path_[entries_[i].path] = i;
 }
 
+MemoryArchive::Entry& MemoryArchive::add(Entry e) {
+  entries_.push_back(std::move(e));
+  by_path_[entries_.back().path] = entries_.size() - 1;
+  return entries_.back();
+}
+
 const MemoryArchive::Entry* MemoryArchive::find(const std::string& path) const {
   const auto it = by_path_.find(path);
   return it == by_path_.end() ? nullptr : &entries_[it->second];

@@ -40,6 +40,8 @@ class MemoryArchive final : public StateArchive {
 
   const std::vector<Entry>& entries() const { return entries_; }
   std::vector<Entry>& entries() { return entries_; }
+  // Appends an array no Simulation saves (a gather's figures of its own), found by its path.
+  Entry& add(Entry e);
   // The entry saved under `path`, or null.
   const Entry* find(const std::string& path) const;
   Entry* find(const std::string& path);

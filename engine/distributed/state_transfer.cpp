@@ -52,10 +52,9 @@ Spread spread_of(const std::string& path) {
       "simulation/body_contact/node_contact_stiffness",
   };
   static const char* const element[] = {
-      "model/gauss_point_states",
-      "model/stress",
-      "model/strain_energy_density",
-      "simulation/element_mass_scale",
+      "model/gauss_point_states",    "model/stress",
+      "model/strain_energy_density", "simulation/element_mass_scale",
+      "frame/element_stress",  // (GatheredState::frame's figures, not a state array)
   };
 
   for (const KeyedList& k : kKeyed) {
@@ -130,13 +129,32 @@ void merge_keyed(const std::vector<MemoryArchive>& ranks, MemoryArchive& w) {
   }
 }
 
-// What a frame or a history row reads (GatheredState::outputs).
-bool read_by_outputs(const std::string& path) {
+// What the summary reads (GatheredState::outputs), or a frame (GatheredState::frame, which
+// takes the elements' stress figures instead of their Gauss points).
+bool read_by_outputs(const std::string& path, GatheredState what) {
   static const char* const read[] = {
       "model/x",      "model/v", "model/f_contact", "model/mass", "model/gauss_point_states",
       "model/stress",
   };
-  return std::any_of(std::begin(read), std::end(read), [&](const char* r) { return path == r; });
+  const std::size_t n = what == GatheredState::frame ? 4 : std::size(read);
+  return std::any_of(read, read + n, [&](const char* r) { return path == r; });
+}
+
+// The entry that carries GatheredState::frame's element figures (not a state array).
+constexpr const char* kElementStressPath = "frame/element_stress";
+constexpr std::size_t kElementStressWidth = 9;
+
+// `local`'s element_stress figures of its held elements, 9 a row (kElementStressWidth).
+std::vector<double> element_stress_rows(const Simulation& local) {
+  std::vector<double> s6, vm, pr, ep;
+  local.element_stress(s6, vm, pr, ep);
+  std::vector<double> rows(kElementStressWidth * vm.size());
+  for (std::size_t e = 0; e < vm.size(); ++e) {
+    double* r = rows.data() + kElementStressWidth * e;
+    for (int k = 0; k < 6; ++k) r[k] = s6[6 * e + k];
+    r[6] = vm[e], r[7] = pr[e], r[8] = ep[e];
+  }
+  return rows;
 }
 
 // The global ids of the nodes (or elements) `rank` owns, ascending: the order its held rows
@@ -185,18 +203,27 @@ void put_rows(const std::vector<std::byte>& from, std::vector<std::byte>& to,
 }  // namespace
 
 void gather_state(Simulation& local, const Distribution& dist, const Partition& p,
-                  Simulation* whole, GatheredState what) {
+                  Simulation* whole, GatheredState what, std::vector<double>* element_stress) {
   const Communicator& comm = *dist.comm;
   const LocalPart& part = dist.part;
+  const bool outputs = what == GatheredState::outputs || what == GatheredState::frame;
   // (for the outputs: what they read, and what is alike on every rank, which is small)
   std::function<bool(const std::string&)> keep;
-  if (what == GatheredState::outputs)
-    keep = [](const std::string& path) {
+  if (outputs)
+    keep = [what](const std::string& path) {
       const Spread s = spread_of(path);
-      return read_by_outputs(path) || s == Spread::same;
+      return read_by_outputs(path, what) || s == Spread::same;
     };
   MemoryArchive mine(keep);
   local.exchange_state(mine);
+  if (what == GatheredState::frame) {
+    // the held elements' figures, as an element array (its owned rows are sent below)
+    const std::vector<double> rows = element_stress_rows(local);
+    MemoryArchive::Entry e{kElementStressPath, StateArchive::Type::f64, sizeof(double), rows.size(),
+                           std::vector<std::byte>(rows.size() * sizeof(double))};
+    if (!rows.empty()) std::memcpy(e.data.data(), rows.data(), e.data.size());
+    mine.add(std::move(e));
+  }
   // this rank's owned rows of the arrays spread over the ranks
   MemoryArchive owned;
   std::vector<std::int32_t> owned_nodes, owned_elements;
@@ -214,7 +241,7 @@ void gather_state(Simulation& local, const Distribution& dist, const Partition& 
   }
   for (const MemoryArchive::Entry& e : mine.entries()) {
     const Spread s = spread_of(e.path);
-    if (what == GatheredState::outputs && !read_by_outputs(e.path)) continue;
+    if (outputs && !read_by_outputs(e.path, what) && e.path != kElementStressPath) continue;
     if (s == Spread::keyed || s == Spread::summed) {
       owned.entries().push_back(e);
       continue;
@@ -244,6 +271,11 @@ void gather_state(Simulation& local, const Distribution& dist, const Partition& 
 
   MemoryArchive w(keep);  // the whole model's state as it stands, then updated
   whole->exchange_state(w);
+  if (what == GatheredState::frame) {
+    const std::size_t n = kElementStressWidth * p.element_rank.size();
+    w.add({kElementStressPath, StateArchive::Type::f64, sizeof(double), n,
+           std::vector<std::byte>(n * sizeof(double))});
+  }
   for (const MemoryArchive::Entry& e : mine.entries()) {
     if (spread_of(e.path) != Spread::same) continue;
     MemoryArchive::Entry* to = w.find(e.path);
@@ -303,6 +335,11 @@ void gather_state(Simulation& local, const Distribution& dist, const Partition& 
                                std::to_string(ids.size()) + " rows");
       put_rows(e.data, to->data, ids, width * e.item_bytes);
     }
+  }
+  if (what == GatheredState::frame) {  // (left in w: loading reads only the view's arrays)
+    const MemoryArchive::Entry& e = *w.find(kElementStressPath);
+    element_stress->resize(e.count);
+    if (e.count > 0) std::memcpy(element_stress->data(), e.data.data(), e.data.size());
   }
   w.load();
   whole->exchange_state(w);

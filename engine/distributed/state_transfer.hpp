@@ -9,6 +9,7 @@
 // energy accounts, walls), or lists keyed by a global key (the walls' near lists, the contact
 // pairs between bodies). A row comes from the rank that owns its node or element.
 #include <string>
+#include <vector>
 
 #include "engine/distributed/distribution.hpp"
 #include "engine/distributed/partition.hpp"
@@ -19,8 +20,13 @@ namespace femdem {
 // What rank 0's Simulation is brought up to date with.
 enum class GatheredState {
   // What the outputs read: positions, velocities, masses, contact forces, Gauss-point states
-  // and stresses (a frame, a history row), and everything the ranks have alike.
+  // and stresses (the summary), and everything the ranks have alike.
   outputs,
+  // What a frame writes: positions, velocities, masses and contact forces, each element's
+  // stress figures computed by its owner (Simulation::element_stress, into `element_stress`),
+  // and everything the ranks have alike; not the Gauss points' states and stresses, which
+  // are 30 numbers an element more (docs/PERFORMANCE.md, "Frames of a distributed run").
+  frame,
   // All of it (a checkpoint).
   everything,
 };
@@ -28,8 +34,12 @@ enum class GatheredState {
 // Every rank calls it; `whole` (the whole model, on rank 0; null elsewhere) then holds the
 // state of `local` (each rank's part, of `dist`, cut by `p`). Throws std::logic_error for a
 // state array whose layout this file does not know (a new array must be listed here).
+// GatheredState::frame also fills `element_stress` on rank 0 (not read elsewhere): the whole
+// model's Simulation::element_stress figures, 9 an element: stress (6), von Mises, pressure,
+// equivalent plastic strain.
 void gather_state(Simulation& local, const Distribution& dist, const Partition& p,
-                  Simulation* whole, GatheredState what = GatheredState::everything);
+                  Simulation* whole, GatheredState what = GatheredState::everything,
+                  std::vector<double>* element_stress = nullptr);
 
 // Every rank calls it; `local` then holds its part of `whole` (rank 0's; null elsewhere), e.g.
 // after rank 0 read a checkpoint. Throws CheckpointError for a state array missing from it.

@@ -33,6 +33,7 @@
 #include "io/checkpoint/checkpoint_file.hpp"
 #include "support/run_command.hpp"
 #include "support/run_outputs.hpp"
+#include "support/sanitizers.hpp"
 #include "support/square_die.hpp"
 #include "support/steel_ball_scene.hpp"
 
@@ -286,8 +287,13 @@ Reference reference(const std::string& name, const char* text, const std::string
 
 class Resume : public ::testing::TestWithParam<std::tuple<std::string, int>> {};
 
+// Under the sanitizers, the runs of 1 thread skip: the same scenes are killed, resumed and
+// compared with 2 threads, which also run the threads' code.
+constexpr const char* kTwoThreadsCover = "the same scene with 2 threads covers it";
+
 TEST_P(Resume, AfterSigkillAtARandomStepGivesTheUninterruptedRunsBits) {
   const auto [name, threads] = GetParam();
+  if (kUnderSanitizers && threads == 1) GTEST_SKIP() << kSkippedUnderSanitizers << kTwoThreadsCover;
   const std::string tag = "killed_" + std::to_string(threads);
   const Reference ref =
       reference(name, name == "every_feature" ? kEveryFeature : kDie.c_str(), tag);
@@ -312,6 +318,7 @@ TEST_P(Resume, AfterSigkillAtARandomStepGivesTheUninterruptedRunsBits) {
 
 TEST_P(Resume, AfterSigtermGivesTheUninterruptedRunsBits) {
   const auto [name, threads] = GetParam();
+  if (kUnderSanitizers && threads == 1) GTEST_SKIP() << kSkippedUnderSanitizers << kTwoThreadsCover;
   const std::string tag = "terminated_" + std::to_string(threads);
   const Reference ref =
       reference(name, name == "every_feature" ? kEveryFeature : kDie.c_str(), tag);
@@ -328,6 +335,9 @@ TEST_P(Resume, AfterSigtermGivesTheUninterruptedRunsBits) {
 }
 
 TEST(ResumeAfterSigint, GivesTheUninterruptedRunsBits) {  // Ctrl-C: the same as SIGTERM
+  if (kUnderSanitizers)
+    GTEST_SKIP() << kSkippedUnderSanitizers
+                 << "SIGTERM's tests run the same handler, interruption and resume";
   const Reference ref = reference("every_feature", kEveryFeature, "interrupted");
   const fs::path out = tmp_dir() / "every_feature_interrupted";
   ASSERT_TRUE(run_and_signal(ref.scene, out, 1, SIGINT, 23u, ref.out));

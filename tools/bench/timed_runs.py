@@ -3,13 +3,16 @@
 """Timed whole runs of femdem at growing sizes: time per element per step and peak memory.
 
 usage: tools/bench/timed_runs.py [--sizes 1e4,1e5,1e6] [--steps 40] [--threads 1,2]
-       [--layouts 1x2,2x1] [--femdem build/femdem] [--out out/bench]
+       [--layouts 1x2,2x1] [--frames 1] [--femdem build/femdem] [--out out/bench]
 
 Each run is an elastic steel box (6 TET10 per grid cell) compressed by a moving rigid wall,
 fixed at its base, for a fixed number of steps, with one frame at the start and one at the end.
 Reported: loop time per element per step (the engine's cost), element updates per second, set-up
 time (mesh generation, model build, stable-step factors) and peak resident memory per element
 (GNU time). Prints a Markdown table for docs/PERFORMANCE.md.
+
+--frames N writes N frames after the first (evenly spread) instead of one at the end: the loop
+time of N frames against one gives a frame's cost (the gather of a distributed run included).
 
 --layouts RxT,... runs each size as R MPI ranks of T threads (mpirun; R = 1 runs without it)
 instead of --threads: e.g. 1x2,2x1 compares threads and ranks on a 2-core machine. The peak
@@ -29,7 +32,7 @@ SCENE = """title = "timed run"
 [simulation]
 end_time = {end_time}
 time_step = {dt}
-output_interval = {end_time}
+output_interval = {output_interval}
 history_interval = {hist}
 
 [[materials]]
@@ -69,6 +72,7 @@ def main():
     ap.add_argument("--steps", type=int, default=40)
     ap.add_argument("--threads", default="1,2")
     ap.add_argument("--layouts", default="", help="RxT,...: R ranks of T threads (mpirun)")
+    ap.add_argument("--frames", type=int, default=1, help="frames after the first")
     ap.add_argument("--femdem", default=os.path.join(os.path.dirname(__file__), "../../build/femdem"))
     ap.add_argument("--out", default="out/bench")
     a = ap.parse_args()
@@ -88,7 +92,8 @@ def main():
             os.makedirs(d, exist_ok=True)
             scene = os.path.join(d, "scene.toml")
             with open(scene, "w") as f:
-                f.write(SCENE.format(end_time=end_time, dt=dt, hist=end_time / 4, h=h))
+                f.write(SCENE.format(end_time=end_time, dt=dt, hist=end_time / 4, h=h,
+                                    output_interval=end_time / a.frames))
             mpi = (["mpirun", "-np", str(ranks), "--oversubscribe", "--allow-run-as-root",
                     "--bind-to", "none"] if ranks > 1 else [])
             cmd = ["/usr/bin/time", "-v"] + mpi + [a.femdem, "run", scene, "--quiet", "--threads",

@@ -87,10 +87,12 @@ void RankGroup::sample(HistorySample& s) {
   if (!volume_of_.empty()) volume_ = local_->bodies_volume(volume_of_);
 }
 
-void RankGroup::gather(Simulation& view, GatheredState what) {
+void RankGroup::gather(Simulation& view, GatheredState what, std::vector<double>* element_stress) {
   const Timed t(times_.gather_s);
-  send(what == GatheredState::outputs ? Command::gather_outputs : Command::gather_everything);
-  gather_state(*local_, dist_, partition_, &view, what);
+  send(what == GatheredState::outputs ? Command::gather_outputs
+       : what == GatheredState::frame ? Command::gather_frame
+                                      : Command::gather_everything);
+  gather_state(*local_, dist_, partition_, &view, what, element_stress);
 }
 
 void RankGroup::scatter(Simulation& view) {
@@ -185,6 +187,9 @@ void RankGroup::follow() {
         break;
       case Command::gather_outputs:
         gather_state(*local_, dist_, partition_, nullptr, GatheredState::outputs);
+        break;
+      case Command::gather_frame:
+        gather_state(*local_, dist_, partition_, nullptr, GatheredState::frame);
         break;
       case Command::gather_everything:
         gather_state(*local_, dist_, partition_, nullptr, GatheredState::everything);

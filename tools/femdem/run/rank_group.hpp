@@ -48,7 +48,9 @@ class RankGroup {
   void step(double dt_limit, Simulation& view);
   // Every body's motion (Simulation::body_motions) on rank 0.
   void body_motions(std::vector<BodyState>& out);
-  void gather(Simulation& view, GatheredState what);
+  // The view takes the ranks' state (GatheredState); for a frame, `element_stress` takes the
+  // elements' stress figures (engine/distributed/state_transfer.hpp).
+  void gather(Simulation& view, GatheredState what, std::vector<double>* element_stress = nullptr);
   // A history row's figures (take_sample) from the parts, on rank 0, and the volume of the
   // bodies of measure_volume_of() (the compaction columns: powder_volume()).
   void sample(HistorySample& s);
@@ -86,6 +88,7 @@ class RankGroup {
     body_motions,
     sample,
     gather_outputs,
+    gather_frame,
     gather_everything,
     scatter,
     measure_work,

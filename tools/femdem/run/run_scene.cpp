@@ -406,12 +406,24 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
   std::optional<OutputFields> optional_fields;
   if (!set.output_fields.empty()) optional_fields.emplace(m);
   std::vector<double> log_strain, nodal_stress, contact_pressure, body_velocity;
+  std::vector<double> element_figures;  // (on ranks: stress (6), von Mises, pressure, eps_p)
   auto write_frame = [&] {
     // the rows up to this frame reach the file first: a killed run loses no row a frame has
     history->flush();
-    if (ranks) ranks->gather(sim, GatheredState::outputs);
+    if (ranks) {
+      // (each element's figures computed by its rank: a frame gathers 9 numbers an element)
+      ranks->gather(sim, GatheredState::frame, &element_figures);
+      const std::size_t ne = element_figures.size() / 9;
+      s6.resize(6 * ne), vm.resize(ne), pr.resize(ne), ep.resize(ne);
+      for (std::size_t e = 0; e < ne; ++e) {
+        const double* f = element_figures.data() + 9 * e;
+        std::copy(f, f + 6, s6.begin() + static_cast<std::ptrdiff_t>(6 * e));
+        vm[e] = f[6], pr[e] = f[7], ep[e] = f[8];
+      }
+    } else {
+      sim.element_stress(s6, vm, pr, ep);
+    }
     for (std::size_t i = 0; i < disp.size(); ++i) disp[i] = m.x[i] - m.X[i];
-    sim.element_stress(s6, vm, pr, ep);
     for (std::size_t w = 0; w < m.walls.size(); ++w)
       for (int k = 0; k < 3; ++k) {
         wall_disp[3 * w + k] = m.walls[w].point[k] - m.walls[w].point0[k];
