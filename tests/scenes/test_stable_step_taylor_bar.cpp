@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <string>
 
+#include "support/sanitizers.hpp"
 #include "support/scene_run.hpp"
 
 namespace {
@@ -23,6 +24,11 @@ const std::string kOptions =
 }  // namespace
 
 TEST(StableStep, PlasticImpactIsSharp) {
+  if (femdem::test::kUnderSanitizers)
+    GTEST_SKIP() << femdem::test::kSkippedUnderSanitizers
+                 << "a measurement of the estimate's sharpness; its code runs in "
+                    "HighestFrequency.* and every scene test, the stop on divergence in "
+                    "HostileInput.AStepFarAboveTheStableOneStopsOnTheEnergyBalance";
   const auto automatic =
       femdem::test::run_shipped_scene("taylor_bar.toml", "stable_step/auto", kOptions);
   ASSERT_EQ(automatic.command.code, 0) << automatic.command.output;

@@ -143,7 +143,8 @@ TEST_P(DistributedRunFailure, ARankKilledStopsEveryRankWithAMessage) {
   const int victim = GetParam();
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // (a file being written may refuse a reader)
   fs::create_directories(tmp_dir());
-  const fs::path scene = tmp_dir() / "long_bar.toml";
+  // (files of its own: ctest runs the two cases side by side)
+  const fs::path scene = tmp_dir() / ("long_bar_" + std::to_string(victim) + ".toml");
   std::ofstream(scene) << kLongBar;
   const fs::path out = tmp_dir() / ("killed_rank_" + std::to_string(victim));
   const fs::path log = tmp_dir() / ("killed_rank_" + std::to_string(victim) + ".log");

@@ -19,6 +19,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "support/femdem_on_ranks.hpp"
 #include "support/run_outputs.hpp"
@@ -344,11 +345,20 @@ class DistributedRun : public ::testing::TestWithParam<std::string> {
 };
 
 TEST_P(DistributedRun, TwoAndThreeRanksWriteWhatOneProcessWrites) {
+  if (kUnderSanitizers && (GetParam() == "hertz_pair" || GetParam() == "taylor_bar"))
+    GTEST_SKIP() << kSkippedUnderSanitizers
+                 << "contact across ranks runs there in the sphere scenes and the compaction, "
+                    "walls across ranks in die_press and taylor_bar_mass_scaling";
   const fs::path scene = write_scene(GetParam(), scene_text());
   const fs::path one = tmp_dir() / (GetParam() + "_1");
   const CommandResult c1 = run(1, scene, one);
   ASSERT_EQ(c1.code, 0) << c1.output;
-  for (int ranks : {2, 3}) {
+  // (under the sanitizers, 3 ranks only, which cut the bodies more and run the same code, but
+  // for the spheres re-dealt on 2)
+  const std::vector<int> rank_counts = kUnderSanitizers && GetParam() != "spheres_redealt"
+                                           ? std::vector<int>{3}
+                                           : std::vector<int>{2, 3};
+  for (int ranks : rank_counts) {
     SCOPED_TRACE(std::to_string(ranks) + " ranks");
     const fs::path out = tmp_dir() / (GetParam() + "_" + std::to_string(ranks));
     const CommandResult c = run(ranks, scene, out);
