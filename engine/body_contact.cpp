@@ -187,6 +187,7 @@ void BodyContact::update_candidates(const Model& m) {
 void BodyContact::list_pair_tets() {
   results_.resize(pairs_.size());
   evaluated_.assign(pairs_.size(), 0);
+  remote_.assign(pairs_.size(), 0);  // (a rank's: set by list_shared_pairs)
   active_tets_.clear();
   for (const Pair& p : pairs_) {
     active_tets_.push_back(p.i);
@@ -219,9 +220,12 @@ void BodyContact::evaluate_pairs(const Model& m, double step_dt) {
   PairInput in;
   in.step_dt = step_dt;
   const auto np = static_cast<std::int64_t>(pairs_.size());
+  std::int64_t here = 0;
 #pragma omp parallel for schedule(dynamic, 256) if (pairs_.size() > kParallelMinPairs) \
-    firstprivate(in)
+    firstprivate(in) reduction(+ : here)
   for (std::int64_t q = 0; q < np; ++q) {
+    if (remote_[q]) continue;  // (another rank evaluates it: share_outcomes brings it)
+    ++here;
     Pair& p = pairs_[q];
     // Most candidates are apart: the kernel's own first test (the corners' boxes overlap, on
     // the same numbers) on the boxes of this step, without gathering the corners. A pair that
@@ -246,6 +250,7 @@ void BodyContact::evaluate_pairs(const Model& m, double step_dt) {
     Law::evaluate(in, p.spring, r);
     evaluated_[q] = r.touching || r.dissipated != 0.0;
   }
+  evaluated_here_ = here;
 }
 
 void BodyContact::gather_patches() {
@@ -305,6 +310,7 @@ void BodyContact::compute(const Model& m, double step_dt, std::vector<double>& f
   }
 
   std::visit([&]<class Law>(const Law&) { evaluate_pairs<Law>(m, step_dt); }, law_);
+  if (dist_) share_outcomes();
 
   // forces summed in pair order: the same bits with any number of threads (and, on a rank,
   // for the nodes it owns, which are in every pair they are in)
@@ -326,9 +332,22 @@ void BodyContact::compute(const Model& m, double step_dt, std::vector<double>& f
 }
 
 void BodyContact::sum_outcomes(const Model& m) {
-  enum { kEnergy, kFriction, kTouching, kListed, kForeign, kSums };
+  enum {
+    kEnergy,
+    kFriction,
+    kTouching,
+    kListed,
+    kForeign,
+    kEvaluatedHere,
+    kShared,
+    kSharedBytes,
+    kSums
+  };
   ExactSum sums[kSums];
   sums[kForeign].add(static_cast<double>(foreign_nodes_.size()));
+  sums[kEvaluatedHere].add(static_cast<double>(evaluated_here_));
+  sums[kShared].add(static_cast<double>(shared_records_));
+  sums[kSharedBytes].add(static_cast<double>(shared_bytes_));
   // the deepest pair per element size; among equals the lowest pair of bodies
   auto body_key = [](int a, int b) { return static_cast<double>(a) * 0x1p26 + b; };
   double deepest_key = HUGE_VAL;
@@ -381,6 +400,10 @@ void BodyContact::sum_outcomes(const Model& m) {
   pair_evaluations_ += static_cast<std::int64_t>(sums[kListed].value());
   touching_evaluations_ += static_cast<std::int64_t>(touching_);
   foreign_received_ += static_cast<std::int64_t>(sums[kForeign].value());
+  evaluations_on_ranks_ += static_cast<std::int64_t>(sums[kEvaluatedHere].value());
+  listed_since_start_ += static_cast<std::int64_t>(sums[kListed].value());
+  shared_sent_ += static_cast<std::int64_t>(sums[kShared].value());
+  shared_bytes_sent_ += static_cast<std::int64_t>(sums[kSharedBytes].value());
   ++computes_;
   if (max_penetration_per_size_ > 0.0 && deepest_key < HUGE_VAL) {
     const auto a = static_cast<std::int64_t>(deepest_key * 0x1p-26);
@@ -588,6 +611,7 @@ void BodyContact::subscribe(const Model& m) {
   std::sort(present_.begin(), present_.end());
   comm.exchange(contact_lists_, m.x.data(), foreign_x_.data(), 3);
   comm.exchange(contact_lists_, m.v.data(), foreign_v_.data(), 3);
+  list_shared_pairs();
 }
 
 void BodyContact::refresh_foreign(const Model& m) {
@@ -599,6 +623,148 @@ void BodyContact::refresh_foreign(const Model& m) {
   const Communicator& comm = *dist_->comm;
   comm.exchange(contact_lists_, m.x.data(), foreign_x_.data(), 3);
   comm.exchange(contact_lists_, m.v.data(), foreign_v_.data(), 3);
+}
+
+// What a pair's evaluation leaves, sent to the other ranks that list the pair: a flag byte (bit
+// 0: the friction spring is not all zeros, bit 1: the pair has something to report), then in
+// the message's second part, pair after pair, the spring (4 doubles) if flagged and the outcome
+// (36 doubles: touching, forces (24), energy, dissipated, stiffness, penetration, normal force
+// on b (3), centroid (3), secant) if flagged. Most shared pairs are apart: one byte each.
+namespace {
+constexpr int kSpringDoubles = 4;
+constexpr int kOutcomeDoubles = 36;
+
+void pack_spring(const PairSpring& s, double* o) {
+  o[0] = s.stick[0], o[1] = s.stick[1], o[2] = s.stick[2], o[3] = s.stick_stiffness;
+}
+void unpack_spring(const double* o, PairSpring& s) {
+  s.stick[0] = o[0], s.stick[1] = o[1], s.stick[2] = o[2], s.stick_stiffness = o[3];
+}
+void pack_outcome(const PairOutcome& r, double* o) {
+  o[0] = r.touching;
+  std::copy_n(r.force, 24, o + 1);
+  o[25] = r.energy, o[26] = r.dissipated, o[27] = r.stiffness, o[28] = r.penetration;
+  std::copy_n(r.normal_force_b, 3, o + 29);
+  std::copy_n(r.centroid, 3, o + 32);
+  o[35] = r.secant;
+}
+void unpack_outcome(const double* o, PairOutcome& r) {
+  r.touching = o[0] != 0.0;
+  std::copy_n(o + 1, 24, r.force);
+  r.energy = o[25], r.dissipated = o[26], r.stiffness = o[27], r.penetration = o[28];
+  std::copy_n(o + 29, 3, r.normal_force_b);
+  std::copy_n(o + 32, 3, r.centroid);
+  r.secant = o[35];
+}
+}  // namespace
+
+void BodyContact::list_shared_pairs() {
+  const Communicator& comm = *dist_->comm;
+  const LocalPart& part = dist_->part;
+  const int ranks = comm.size(), me = comm.rank();
+  // A pair is listed on every rank that owns a corner of its sub-tets (update_candidates) and
+  // evaluated by the one that counts it; to each other one it sends what the evaluation left.
+  std::vector<LocalPart::Neighbour> lists(ranks);
+  std::vector<std::vector<std::byte>> keys(ranks);
+  outbox_pairs_.clear();
+  inbox_pairs_.clear();
+  for (std::size_t q = 0; q < pairs_.size(); ++q) {
+    const Pair& p = pairs_[q];
+    const std::uint32_t key[2] = {p.i, p.j};
+    if (!counts(p)) {
+      remote_[q] = 1;
+      const int from = part.node_rank[part.contact_tets[p.i][0]];
+      lists[from].receive.push_back(static_cast<std::int32_t>(inbox_pairs_.size()));
+      inbox_pairs_.push_back(static_cast<std::int32_t>(q));
+      continue;
+    }
+    int to[8], n_to = 0;  // the other ranks owning a corner (each once)
+    for (std::uint32_t t : {p.i, p.j})
+      for (std::int32_t g : part.contact_tets[t]) {
+        const int r = part.node_rank[g];
+        if (r != me && std::find(to, to + n_to, r) == to + n_to) to[n_to++] = r;
+      }
+    for (int k = 0; k < n_to; ++k) {
+      lists[to[k]].send.push_back(static_cast<std::int32_t>(outbox_pairs_.size()));
+      append_bytes(keys[to[k]], key, 2);
+    }
+    const bool sent = n_to > 0;
+    if (sent) outbox_pairs_.push_back(static_cast<std::int32_t>(q));
+  }
+  shared_lists_.clear();
+  for (int r = 0; r < ranks; ++r) {
+    lists[r].rank = r;
+    if (!lists[r].send.empty() || !lists[r].receive.empty())
+      shared_lists_.push_back(std::move(lists[r]));
+  }
+  // Both sides must name the same pairs in the same order, or a step would wait for records
+  // never sent: checked here, where a collective cannot hang.
+  const std::vector<std::vector<std::byte>> got = comm.all_to_all(keys);
+  for (int r = 0; r < ranks; ++r) {
+    std::vector<std::byte> expected;
+    for (const LocalPart::Neighbour& n : shared_lists_)
+      if (n.rank == r)
+        for (std::int32_t slot : n.receive) {
+          const Pair& p = pairs_[inbox_pairs_[slot]];
+          const std::uint32_t key[2] = {p.i, p.j};
+          append_bytes(expected, key, 2);
+        }
+    if (got[r] != expected)
+      throw std::logic_error("contact pairs listed differently on ranks " + std::to_string(me) +
+                             " and " + std::to_string(r));
+  }
+}
+
+void BodyContact::share_outcomes() {
+  const std::size_t nb = shared_lists_.size();
+  std::vector<int> ranks(nb);
+  outboxes_.resize(nb);
+  double record[kSpringDoubles + kOutcomeDoubles];
+  shared_records_ = shared_bytes_ = 0;
+  for (std::size_t k = 0; k < nb; ++k) {
+    const LocalPart::Neighbour& n = shared_lists_[k];
+    ranks[k] = n.rank;
+    std::vector<std::byte>& out = outboxes_[k];
+    out.resize(n.send.size());  // the flags, then the records
+    for (std::size_t s = 0; s < n.send.size(); ++s) {
+      const std::size_t q = static_cast<std::size_t>(outbox_pairs_[n.send[s]]);
+      const PairSpring& spring = pairs_[q].spring;
+      const bool has_spring = spring.stretched() || spring.stick_stiffness != 0.0;
+      out[s] = static_cast<std::byte>((has_spring ? 1 : 0) | (evaluated_[q] ? 2 : 0));
+      int w = 0;
+      if (has_spring) pack_spring(spring, record), w = kSpringDoubles;
+      if (evaluated_[q]) pack_outcome(results_[q], record + w), w += kOutcomeDoubles;
+      append_bytes(out, record, static_cast<std::size_t>(w));
+    }
+    shared_records_ += n.send.size();
+    shared_bytes_ += out.size();
+  }
+  const std::vector<std::vector<std::byte>> in = dist_->comm->exchange_bytes(ranks, outboxes_);
+  for (std::size_t k = 0; k < nb; ++k) {
+    const LocalPart::Neighbour& n = shared_lists_[k];
+    const std::vector<std::byte>& got = in[k];
+    std::size_t at = n.receive.size();
+    if (got.size() < at)
+      throw std::logic_error("contact pair outcomes from rank " + std::to_string(n.rank) +
+                             " cut short");
+    for (std::size_t s = 0; s < n.receive.size(); ++s) {
+      const std::size_t q = static_cast<std::size_t>(inbox_pairs_[n.receive[s]]);
+      const auto flags = static_cast<unsigned>(got[s]);
+      const int w = ((flags & 1u) ? kSpringDoubles : 0) + ((flags & 2u) ? kOutcomeDoubles : 0);
+      if (at + w * sizeof(double) > got.size())
+        throw std::logic_error("contact pair outcomes from rank " + std::to_string(n.rank) +
+                               " cut short");
+      std::memcpy(record, got.data() + at, w * sizeof(double));
+      at += w * sizeof(double);
+      PairSpring& spring = pairs_[q].spring;
+      if (flags & 1u)
+        unpack_spring(record, spring);
+      else
+        spring = PairSpring{};
+      evaluated_[q] = (flags & 2u) != 0;
+      if (evaluated_[q]) unpack_outcome(record + ((flags & 1u) ? kSpringDoubles : 0), results_[q]);
+    }
+  }
 }
 
 void BodyContact::append_springs(const Model& m, std::vector<ContactSpring>& out) const {

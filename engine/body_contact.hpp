@@ -17,9 +17,10 @@
 // node's contact force has one process's bits. The other ranks' sub-tets within reach come as
 // foreign sub-tets: at each broadphase rebuild every rank sends the sub-tets near another
 // rank's bodies, and then, until the next, the positions and velocities of the corners of those
-// in its pairs. A pair between two ranks is evaluated on both; its energy and friction work are
-// counted by the rank owning the first corner of its first sub-tet (exact sums, added over the
-// ranks), and the maxima are taken over the ranks.
+// in its pairs. A pair listed on several ranks is evaluated once, by the rank owning the first
+// corner of its first sub-tet, which sends the outcome and the friction spring to the others
+// (one message a step to each rank it shares pairs with); that rank counts its energy and
+// friction work (exact sums, added over the ranks), and the maxima are taken over the ranks.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -108,6 +109,17 @@ class BodyContact final : public ContactModel {
   double foreign_nodes_per_step() const {
     return computes_ > 0 ? static_cast<double>(foreign_received_) / computes_ : 0.0;
   }
+  // Distributed runs: the pairs whose outcome one rank sent to another, and the bytes, a step
+  // by all ranks on average; and since the start or the resume, the pairs evaluated on all
+  // ranks against the pairs listed (counted once): equal, as each pair is evaluated by one rank.
+  double shared_pairs_per_step() const {
+    return computes_ > 0 ? static_cast<double>(shared_sent_) / computes_ : 0.0;
+  }
+  double shared_bytes_per_step() const {
+    return computes_ > 0 ? static_cast<double>(shared_bytes_sent_) / computes_ : 0.0;
+  }
+  std::int64_t evaluations_on_ranks() const { return evaluations_on_ranks_; }
+  std::int64_t listed_since_start() const { return listed_since_start_; }
   std::int64_t broadphase_runs() const { return broadphase_runs_; }
   // Totals over the run: candidate pairs evaluated, and those found touching.
   std::int64_t pair_evaluations() const { return pair_evaluations_; }
@@ -153,6 +165,12 @@ class BodyContact final : public ContactModel {
   void subscribe(const Model& m);
   // Brings the foreign corners' positions and velocities along the lists.
   void refresh_foreign(const Model& m);
+  // Distributed runs: which listed pairs another rank evaluates (remote_), and the lists their
+  // records go by; checks that each side names the same pairs.
+  void list_shared_pairs();
+  // Sends the outcomes of the pairs evaluated here to the other ranks that list them, and takes
+  // theirs.
+  void share_outcomes();
 
   const Distribution* dist_ = nullptr;
   BodyPairLaw law_;
@@ -190,6 +208,15 @@ class BodyContact final : public ContactModel {
   // the law found it apart, with no spring to release), so that the serial sums read only
   // those outcomes.
   std::vector<std::uint8_t> evaluated_;
+  // Per candidate pair: 1 when another rank evaluates it (distributed runs).
+  std::vector<std::uint8_t> remote_;
+  // The pairs shared with other ranks: the lists (send: slots of outbox_pairs_, receive: slots of
+  // inbox_pairs_, each the index of a listed pair), and this step's messages.
+  std::vector<LocalPart::Neighbour> shared_lists_;
+  std::vector<std::int32_t> outbox_pairs_, inbox_pairs_;
+  std::vector<std::vector<std::byte>> outboxes_;
+  std::size_t shared_records_ = 0, shared_bytes_ = 0;  // sent by this rank in the last step
+  std::int64_t evaluated_here_ = 0;          // candidate pairs this rank took in the last step
   std::vector<Aabb> tet_boxes_;              // of each contact sub-tet, this step (no margin)
   std::vector<TetPositions> tet_positions_;  // its corners, this step
   std::vector<std::uint32_t> active_tets_;   // the sub-tets of candidate pairs, sorted
@@ -210,7 +237,9 @@ class BodyContact final : public ContactModel {
   std::vector<std::pair<std::uint64_t, std::uint32_t>> patch_keys_;  // (body pair, result index)
   std::int64_t broadphase_runs_ = 0;
   std::int64_t pair_evaluations_ = 0, touching_evaluations_ = 0;
-  std::int64_t foreign_received_ = 0, computes_ = 0;  // (not in checkpoints: a log figure)
+  // (not in checkpoints: log figures)
+  std::int64_t foreign_received_ = 0, computes_ = 0, shared_sent_ = 0, shared_bytes_sent_ = 0,
+               evaluations_on_ranks_ = 0, listed_since_start_ = 0;
 };
 
 }  // namespace femdem

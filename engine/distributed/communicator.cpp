@@ -144,6 +144,28 @@ void Communicator::exchange(std::span<const LocalPart::Neighbour> lists, const d
   }
 }
 
+std::vector<std::vector<std::byte>> Communicator::exchange_bytes(
+    std::span<const int> ranks, const std::vector<std::vector<std::byte>>& to) const {
+  std::vector<std::vector<std::byte>> from(ranks.size());
+  if (size_ == 1 || ranks.empty()) return from;
+  constexpr int kTag = 25;
+  std::vector<MPI_Request> sent(ranks.size());
+  for (std::size_t k = 0; k < ranks.size(); ++k)
+    MPI_Isend(to[k].data(), static_cast<int>(to[k].size()), MPI_BYTE, ranks[k], kTag,
+              MPI_COMM_WORLD, &sent[k]);
+  // (the sizes are the senders': each message is probed for its length before it is received)
+  for (std::size_t k = 0; k < ranks.size(); ++k) {
+    MPI_Status status;
+    MPI_Probe(ranks[k], kTag, MPI_COMM_WORLD, &status);
+    int n = 0;
+    MPI_Get_count(&status, MPI_BYTE, &n);
+    from[k].resize(static_cast<std::size_t>(n));
+    MPI_Recv(from[k].data(), n, MPI_BYTE, ranks[k], kTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  }
+  MPI_Waitall(static_cast<int>(sent.size()), sent.data(), MPI_STATUSES_IGNORE);
+  return from;
+}
+
 std::vector<std::vector<std::byte>> Communicator::all_gather(
     std::span<const std::byte> mine) const {
   std::vector<std::vector<std::byte>> all(static_cast<std::size_t>(size_));

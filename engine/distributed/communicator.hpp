@@ -43,6 +43,10 @@ class Communicator {
   // at to[receive[i]] (`width` doubles each; from and to may be the same array).
   void exchange(std::span<const LocalPart::Neighbour> lists, const double* from, double* to,
                 int width) const;
+  // Messages of any size with a few ranks: to[k] goes to ranks[k], and from[k] comes back from
+  // it (every rank named must name this one in turn).
+  std::vector<std::vector<std::byte>> exchange_bytes(
+      std::span<const int> ranks, const std::vector<std::vector<std::byte>>& to) const;
   // Every rank gets every rank's bytes, in rank order (its own included).
   std::vector<std::vector<std::byte>> all_gather(std::span<const std::byte> mine) const;
   // Rank r gets to_each[r] of every rank, in rank order (to_each has size() entries).

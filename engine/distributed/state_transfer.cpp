@@ -129,15 +129,18 @@ void merge_keyed(const std::vector<MemoryArchive>& ranks, MemoryArchive& w) {
   }
 }
 
-// What the summary reads (GatheredState::outputs), or a frame (GatheredState::frame, which
-// takes the elements' stress figures instead of their Gauss points).
+// What a frame reads (GatheredState::frame, which takes the elements' stress figures instead of
+// their Gauss points), and what the summary reads (GatheredState::outputs).
 bool read_by_outputs(const std::string& path, GatheredState what) {
-  static const char* const read[] = {
+  static const char* const frame[] = {"model/x", "model/v", "model/f_contact", "model/mass"};
+  static const char* const summary[] = {
       "model/x",      "model/v", "model/f_contact", "model/mass", "model/gauss_point_states",
       "model/stress",
   };
-  const std::size_t n = what == GatheredState::frame ? 4 : std::size(read);
-  return std::any_of(read, read + n, [&](const char* r) { return path == r; });
+  auto named = [&](const auto& list) {
+    return std::any_of(std::begin(list), std::end(list), [&](const char* r) { return path == r; });
+  };
+  return what == GatheredState::frame ? named(frame) : named(summary);
 }
 
 // The entry that carries GatheredState::frame's element figures (not a state array).
@@ -203,7 +206,7 @@ void put_rows(const std::vector<std::byte>& from, std::vector<std::byte>& to,
 }  // namespace
 
 void gather_state(Simulation& local, const Distribution& dist, const Partition& p,
-                  Simulation* whole, GatheredState what, std::vector<double>* element_stress) {
+                  Simulation* whole, GatheredState what, ElementStressFigures* element_stress) {
   const Communicator& comm = *dist.comm;
   const LocalPart& part = dist.part;
   const bool outputs = what == GatheredState::outputs || what == GatheredState::frame;
@@ -338,8 +341,16 @@ void gather_state(Simulation& local, const Distribution& dist, const Partition& 
   }
   if (what == GatheredState::frame) {  // (left in w: loading reads only the view's arrays)
     const MemoryArchive::Entry& e = *w.find(kElementStressPath);
-    element_stress->resize(e.count);
-    if (e.count > 0) std::memcpy(element_stress->data(), e.data.data(), e.data.size());
+    const std::size_t ne = e.count / kElementStressWidth;
+    const auto* rows = reinterpret_cast<const double*>(e.data.data());
+    ElementStressFigures& s = *element_stress;
+    s.stress6.resize(6 * ne), s.von_mises.resize(ne), s.pressure.resize(ne);
+    s.plastic_strain.resize(ne);
+    for (std::size_t k = 0; k < ne; ++k) {
+      const double* r = rows + kElementStressWidth * k;
+      std::copy(r, r + 6, s.stress6.begin() + static_cast<std::ptrdiff_t>(6 * k));
+      s.von_mises[k] = r[6], s.pressure[k] = r[7], s.plastic_strain[k] = r[8];
+    }
   }
   w.load();
   whole->exchange_state(w);

@@ -17,6 +17,12 @@
 
 namespace femdem {
 
+// The figures a frame writes per element (Simulation::element_stress): stress (6 a row, xx yy
+// zz xy yz xz), von Mises, pressure, equivalent plastic strain.
+struct ElementStressFigures {
+  std::vector<double> stress6, von_mises, pressure, plastic_strain;
+};
+
 // What rank 0's Simulation is brought up to date with.
 enum class GatheredState {
   // What the outputs read: positions, velocities, masses, contact forces, Gauss-point states
@@ -34,12 +40,11 @@ enum class GatheredState {
 // Every rank calls it; `whole` (the whole model, on rank 0; null elsewhere) then holds the
 // state of `local` (each rank's part, of `dist`, cut by `p`). Throws std::logic_error for a
 // state array whose layout this file does not know (a new array must be listed here).
-// GatheredState::frame also fills `element_stress` on rank 0 (not read elsewhere): the whole
-// model's Simulation::element_stress figures, 9 an element: stress (6), von Mises, pressure,
-// equivalent plastic strain.
+// GatheredState::frame also fills `element_stress` on rank 0 (not read elsewhere) with the whole
+// model's figures, each element's computed by its owner.
 void gather_state(Simulation& local, const Distribution& dist, const Partition& p,
                   Simulation* whole, GatheredState what = GatheredState::everything,
-                  std::vector<double>* element_stress = nullptr);
+                  ElementStressFigures* element_stress = nullptr);
 
 // Every rank calls it; `local` then holds its part of `whole` (rank 0's; null elsewhere), e.g.
 // after rank 0 read a checkpoint. Throws CheckpointError for a state array missing from it.

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "support/run_outputs.hpp"
+#include "support/vibrating_bar_scene.hpp"
 
 extern char** environ;
 
@@ -35,30 +36,11 @@ using Clock = std::chrono::steady_clock;
 
 // An elastic bar that vibrates for far longer than the test waits (17,500 steps, about 20 s in
 // the release build): a frame every 18 steps.
-const char* const kLongBar = R"(title = "distributed: a rank dies"
-[simulation]
+const std::string kLongBar = vibrating_bar_scene("distributed: a rank dies", R"(
 end_time = 200.0
 output_interval = 0.2
 history_interval = 0.1
-
-[[materials]]
-name = "bar"
-model = "elastic"
-density = 1.0
-youngs_modulus = 100.0
-poisson_ratio = 0.0
-
-[[bodies]]
-name = "bar"
-material = "bar"
-mesh = { generator = "box", size = [10.0, 1.0, 1.0], element_size = 0.5 }
-velocity = [1e-4, 0.0, 0.0]
-
-[[constraints]]
-body = "bar"
-region = "all"
-fix = ["y", "z"]
-)";
+)");
 
 fs::path tmp_dir() {
   return fs::path(FEMDEM_TEST_TMP) / "distributed_failure";
@@ -224,9 +206,10 @@ TEST_P(DistributedRunFailure, ARankKilledStopsEveryRankWithAMessage) {
   // what was written stays readable; nothing says the run is complete
   EXPECT_GE(frames_written(out), 3);
   EXPECT_EQ(complete_mark(out), 0);
-  if (fs::exists(out / "summary.json"))
+  if (fs::exists(out / "summary.json")) {
     EXPECT_NE(nlohmann::json::parse(read_text(out / "summary.json")).value("status", ""),
               "completed");
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Ranks, DistributedRunFailure, ::testing::Values(0, 1));

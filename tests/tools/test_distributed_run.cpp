@@ -16,6 +16,7 @@
 // 2 and 3 ranks); the 64-sphere compaction (scenes/compaction_64_spheres.toml) in small.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -25,37 +26,19 @@
 #include "support/run_outputs.hpp"
 #include "support/sanitizers.hpp"
 #include "support/square_die.hpp"
+#include "support/vibrating_bar_scene.hpp"
 
 namespace femdem::test {
 namespace {
 
 namespace fs = std::filesystem;
 
-const char* const kElasticBar = R"(title = "distributed: elastic bar vibration"
-[simulation]
+const std::string kElasticBar = vibrating_bar_scene("distributed: elastic bar vibration", R"(
 end_time = 6.0
 output_interval = 0.5
 history_interval = 0.1
 checkpoint_interval = 1.0
-
-[[materials]]
-name = "bar"
-model = "elastic"
-density = 1.0
-youngs_modulus = 100.0
-poisson_ratio = 0.0
-
-[[bodies]]
-name = "bar"
-material = "bar"
-mesh = { generator = "box", size = [10.0, 1.0, 1.0], element_size = 0.5 }
-velocity = [1e-4, 0.0, 0.0]
-
-[[constraints]]
-body = "bar"
-region = "all"
-fix = ["y", "z"]
-
+)") + R"(
 [[constraints]]
 body = "bar"
 region = { plane_point = [0.0, 0.0, 0.0], plane_normal = [1.0, 0.0, 0.0] }
@@ -301,7 +284,7 @@ struct SceneCase {
 };
 
 SceneCase scene_case(const std::string& name) {
-  if (name == "elastic_bar") return {kElasticBar, "3.0", "6.0"};
+  if (name == "elastic_bar") return {kElasticBar.c_str(), "3.0", "6.0"};
   if (name == "plastic_bar") return {kPlasticBar, "1e-4", "2e-4"};
   if (name == "taylor_bar") return {kTaylorBar, "8e-6", "16e-6"};
   if (name == "taylor_bar_mass_scaling") return {kTaylorBarScaled.c_str(), "8e-6", "16e-6"};
@@ -371,13 +354,33 @@ TEST_P(DistributedRun, TwoAndThreeRanksWriteWhatOneProcessWrites) {
     // (the spheres re-dealt: on 2 ranks, once their spread has turned)
     // (and the sphere scene on 3 ranks at the default threshold: bodies in contact re-dealt)
     if ((GetParam() == "spheres_redealt" && ranks == 2) ||
-        (GetParam() == "spheres_damped" && ranks == 3))
+        (GetParam() == "spheres_damped" && ranks == 3)) {
       EXPECT_NE(log.find("rebalanced at t = "), std::string::npos) << log;
+    }
     if (const auto at = log.find(received); at != std::string::npos) {
-      if (GetParam() != "spheres_redealt")  // (its pairs meet on one rank once re-dealt)
+      if (GetParam() != "spheres_redealt") {  // (its pairs meet on one rank once re-dealt)
         EXPECT_GT(std::stod(log.substr(at + received.size())), 0.0) << log;
-    } else
+      }
+      // each pair evaluated by one rank: the pairs taken on all ranks are the pairs listed
+      // (counted once), and a pair listed on two ranks went from one to the other as an outcome
+      long long evaluated = -1, listed = -2;
+      double sent = -1.0;
+      const auto e = log.find("contact pairs evaluated: ");
+      ASSERT_NE(e, std::string::npos) << log;
+      ASSERT_EQ(std::sscanf(log.c_str() + e,
+                            "contact pairs evaluated: %lld on all ranks for %lld listed (each by "
+                            "one rank); %lf",
+                            &evaluated, &listed, &sent),
+                3)
+          << log;
+      EXPECT_EQ(evaluated, listed) << log;
+      EXPECT_GT(listed, 0) << log;
+      if (GetParam() != "spheres_redealt") {
+        EXPECT_GT(sent, 0.0) << log;
+      }
+    } else {
       EXPECT_TRUE(GetParam().find("bar") != std::string::npos || GetParam() == "die_press") << log;
+    }
   }
 }
 

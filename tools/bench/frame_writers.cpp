@@ -184,6 +184,21 @@ std::vector<double> owned_values(const std::vector<Run>& runs, hsize_t comps, in
   return v;
 }
 
+// The values of every field (kFields) a rank holds in `frame`.
+std::vector<std::vector<double>> frame_values(const Layout& l, int frame) {
+  std::vector<std::vector<double>> values;
+  for (const Field& f : kFields)
+    values.push_back(owned_values(f.on_nodes ? l.node_runs : l.element_runs, f.comps, frame));
+  return values;
+}
+
+// The slowest rank's seconds since its `start` (a frame is written when every rank is done).
+double slowest_since(double start) {
+  double mine = now() - start, slowest = 0.0;
+  MPI_Allreduce(&mine, &slowest, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  return slowest;
+}
+
 // Gathered: each field's owned rows to rank 0 (MPI_Gatherv), placed into the whole frame there
 // and written by rank 0 alone; the file in single-writer/multiple-reader mode.
 std::vector<double> gathered(const Layout& l, const std::string& file_name, int frames) {
@@ -222,9 +237,7 @@ std::vector<double> gathered(const Layout& l, const std::string& file_name, int 
   std::vector<double> seconds;
   std::vector<double> whole, received;
   for (int frame = 0; frame < frames; ++frame) {
-    std::vector<std::vector<double>> values;
-    for (const Field& f : kFields)
-      values.push_back(owned_values(f.on_nodes ? l.node_runs : l.element_runs, f.comps, frame));
+    const std::vector<std::vector<double>> values = frame_values(l, frame);
     MPI_Barrier(MPI_COMM_WORLD);
     const double start = now();
     for (std::size_t k = 0; k < std::size(kFields); ++k) {
@@ -253,9 +266,7 @@ std::vector<double> gathered(const Layout& l, const std::string& file_name, int 
                  whole.data(), H5P_DEFAULT);
     }
     if (rank == 0) check(H5Fflush(file, H5F_SCOPE_LOCAL), "H5Fflush");
-    double mine = now() - start, slowest = 0.0;
-    MPI_Allreduce(&mine, &slowest, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
-    seconds.push_back(slowest);
+    seconds.push_back(slowest_since(start));
   }
   if (rank == 0) H5Fclose(file);
   return seconds;
@@ -275,9 +286,7 @@ std::vector<double> parallel(const Layout& l, const std::string& file_name, int 
   check(H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE), "H5Pset_dxpl_mpio");
   std::vector<double> seconds;
   for (int frame = 0; frame < frames; ++frame) {
-    std::vector<std::vector<double>> values;
-    for (const Field& f : kFields)
-      values.push_back(owned_values(f.on_nodes ? l.node_runs : l.element_runs, f.comps, frame));
+    const std::vector<std::vector<double>> values = frame_values(l, frame);
     MPI_Barrier(MPI_COMM_WORLD);
     const double start = now();
     for (std::size_t k = 0; k < std::size(kFields); ++k) {
@@ -286,9 +295,7 @@ std::vector<double> parallel(const Layout& l, const std::string& file_name, int 
                  f.on_nodes ? l.node_runs : l.element_runs, values[k].data(), dxpl);
     }
     check(H5Fflush(file, H5F_SCOPE_GLOBAL), "H5Fflush");
-    double mine = now() - start, slowest = 0.0;
-    MPI_Allreduce(&mine, &slowest, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
-    seconds.push_back(slowest);
+    seconds.push_back(slowest_since(start));
   }
   H5Pclose(dxpl);
   H5Fclose(file);

@@ -87,7 +87,7 @@ void RankGroup::sample(HistorySample& s) {
   if (!volume_of_.empty()) volume_ = local_->bodies_volume(volume_of_);
 }
 
-void RankGroup::gather(Simulation& view, GatheredState what, std::vector<double>* element_stress) {
+void RankGroup::gather(Simulation& view, GatheredState what, ElementStressFigures* element_stress) {
   const Timed t(times_.gather_s);
   send(what == GatheredState::outputs ? Command::gather_outputs
        : what == GatheredState::frame ? Command::gather_frame

@@ -50,7 +50,7 @@ class RankGroup {
   void body_motions(std::vector<BodyState>& out);
   // The view takes the ranks' state (GatheredState); for a frame, `element_stress` takes the
   // elements' stress figures (engine/distributed/state_transfer.hpp).
-  void gather(Simulation& view, GatheredState what, std::vector<double>* element_stress = nullptr);
+  void gather(Simulation& view, GatheredState what, ElementStressFigures* element_stress = nullptr);
   // A history row's figures (take_sample) from the parts, on rank 0, and the volume of the
   // bodies of measure_volume_of() (the compaction columns: powder_volume()).
   void sample(HistorySample& s);

@@ -396,7 +396,8 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
   }
   RunLog& log = *log_file;
 
-  std::vector<double> disp(m.X.size()), s6, vm, pr, ep, row;
+  std::vector<double> disp(m.X.size()), row;
+  ElementStressFigures stress;  // each frame's
   std::vector<double> wall_disp(3 * m.walls.size()), wall_force(3 * m.walls.size());
   // the optional fields (engine/output_fields.hpp), computed only when the scene asks
   const auto wants = [&](const char* name) {
@@ -406,33 +407,30 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
   std::optional<OutputFields> optional_fields;
   if (!set.output_fields.empty()) optional_fields.emplace(m);
   std::vector<double> log_strain, nodal_stress, contact_pressure, body_velocity;
-  std::vector<double> element_figures;  // (on ranks: stress (6), von Mises, pressure, eps_p)
   auto write_frame = [&] {
     // the rows up to this frame reach the file first: a killed run loses no row a frame has
     history->flush();
-    if (ranks) {
-      // (each element's figures computed by its rank: a frame gathers 9 numbers an element)
-      ranks->gather(sim, GatheredState::frame, &element_figures);
-      const std::size_t ne = element_figures.size() / 9;
-      s6.resize(6 * ne), vm.resize(ne), pr.resize(ne), ep.resize(ne);
-      for (std::size_t e = 0; e < ne; ++e) {
-        const double* f = element_figures.data() + 9 * e;
-        std::copy(f, f + 6, s6.begin() + static_cast<std::ptrdiff_t>(6 * e));
-        vm[e] = f[6], pr[e] = f[7], ep[e] = f[8];
-      }
-    } else {
-      sim.element_stress(s6, vm, pr, ep);
-    }
+    if (ranks)  // (each element's figures computed by its rank: 9 numbers an element gathered)
+      ranks->gather(sim, GatheredState::frame, &stress);
+    else
+      sim.element_stress(stress.stress6, stress.von_mises, stress.pressure, stress.plastic_strain);
     for (std::size_t i = 0; i < disp.size(); ++i) disp[i] = m.x[i] - m.X[i];
     for (std::size_t w = 0; w < m.walls.size(); ++w)
       for (int k = 0; k < 3; ++k) {
         wall_disp[3 * w + k] = m.walls[w].point[k] - m.walls[w].point0[k];
         wall_force[3 * w + k] = m.walls[w].force[k];
       }
-    FrameFields fields{disp, m.v, s6, vm, pr, ep, wall_disp, wall_force};
+    FrameFields fields{disp,
+                       m.v,
+                       stress.stress6,
+                       stress.von_mises,
+                       stress.pressure,
+                       stress.plastic_strain,
+                       wall_disp,
+                       wall_force};
     if (optional_fields) {
       if (wants("log_strain")) optional_fields->log_strain(m, log_strain);
-      if (wants("nodal_stress")) optional_fields->nodal_stress(m, s6, nodal_stress);
+      if (wants("nodal_stress")) optional_fields->nodal_stress(m, stress.stress6, nodal_stress);
       if (wants("contact_pressure")) optional_fields->contact_pressure(m, contact_pressure);
       if (wants("body_velocity")) optional_fields->body_velocity(m, body_velocity);
       fields.log_strain = log_strain;
@@ -610,12 +608,19 @@ int execute(const SceneFile& scene, RunOrigin origin, const RunOptions& options,
                     100.0 * set.rebalance_threshold);
       log.file_only(std::string(buf) + "\n");
     }
-    if (ranks->part().body_contact().active()) {
-      const double n = ranks->part().body_contact().foreign_nodes_per_step();
+    if (const BodyContact& contact = ranks->part().body_contact(); contact.active()) {
+      const double n = contact.foreign_nodes_per_step();
       std::snprintf(buf, sizeof buf,
                     "contact nodes of other ranks' bodies received a step: %.1f in all (%.4g kB), "
                     "on average",
                     n, 48e-3 * n);
+      log.file_only(std::string(buf) + "\n");
+      std::snprintf(buf, sizeof buf,
+                    "contact pairs evaluated: %lld on all ranks for %lld listed (each by one "
+                    "rank); %.1f pair outcomes sent to other ranks a step (%.4g kB), on average",
+                    static_cast<long long>(contact.evaluations_on_ranks()),
+                    static_cast<long long>(contact.listed_since_start()),
+                    contact.shared_pairs_per_step(), 1e-3 * contact.shared_bytes_per_step());
       log.file_only(std::string(buf) + "\n");
     }
   }
