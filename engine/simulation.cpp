@@ -50,7 +50,7 @@ Simulation::Simulation(Model model, std::optional<Distribution> distribution)
       body_contact_(model_, dist_ ? &*dist_ : nullptr) {
   const auto nn = static_cast<std::size_t>(model_.node_count);
   const auto ne = static_cast<std::size_t>(model_.element_count);
-  check_distributable();
+  if (dist_) check_distributable(model_, dist_->part);
   accel_.assign(3 * nn, 0.0);
   reaction_.assign(3 * nn, 0.0);
   elem_force_.assign(30 * ne, 0.0);
@@ -323,12 +323,10 @@ double Simulation::damp_deformation(double alpha) {
   return power[0].value();
 }
 
-void Simulation::check_distributable() const {
-  if (!dist_) return;
-  const Model& m = model_;
+void Simulation::check_distributable(const Model& m, const LocalPart& part) {
   const SimulationSettings& s = m.settings;
   std::string missing;
-  const auto& body_rank = dist_->part.body_rank;
+  const auto& body_rank = part.body_rank;
   const bool cut = std::find(body_rank.begin(), body_rank.end(), -1) != body_rank.end();
   if (cut && s.deformation_damping > 0.0)
     missing = "simulation.deformation_damping on a body cut among ranks";

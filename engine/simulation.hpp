@@ -58,6 +58,11 @@ Model build_model(const ModelSpec& spec);
 
 class Simulation {
  public:
+  // Throws InputError when a rank's part (`local` of `part`) holds what distributed runs cannot
+  // yet do. The constructor checks it too, but after its first collective call: a rank group
+  // checks first, so that every rank refuses the scene before the ranks start (the refusal is
+  // then agreed as bad input: engine/distributed/communicator.hpp).
+  static void check_distributable(const Model& local, const LocalPart& part);
   // With a distribution: `model` is this rank's part (local_model), and the steps give its
   // owned nodes the same bits as one process would (docs/ARCHITECTURE.md, "Distributed runs");
   // energies() and the stable step are then the whole model's, and every rank must call
@@ -155,7 +160,6 @@ class Simulation {
     if (dist_) dist_->comm->sum(sums);
   }
   double reduce_min(double x) const { return dist_ ? dist_->comm->min(x) : x; }
-  void check_distributable() const;
   // Distributed: rank 0 gets the rows of the bodies other ranks hold whole (their motion and
   // largest tension, in `out` and `tension` on their rank), and every body cut among ranks
   // summed over them.

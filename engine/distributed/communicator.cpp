@@ -37,8 +37,44 @@ std::vector<std::vector<double>>& receive_buffers() {
 
 }  // namespace
 
+namespace {
+
+// The agreed failure: every rank gets the exit code and message of rank `from`.
+RanksFailed share_failure(int from, int code, std::string message) {
+  MPI_Bcast(&code, 1, MPI_INT, from, MPI_COMM_WORLD);
+  std::uint64_t n = message.size();
+  MPI_Bcast(&n, 1, MPI_UINT64_T, from, MPI_COMM_WORLD);
+  message.resize(n);
+  MPI_Bcast(message.data(), static_cast<int>(n), MPI_CHAR, from, MPI_COMM_WORLD);
+  return RanksFailed(code, from, message);
+}
+
+}  // namespace
+
+void Communicator::start() const {
+  if (started_ || size_ == 1) return;
+  started_ = true;
+  int lowest = size_;  // (no failure here)
+  MPI_Allreduce(MPI_IN_PLACE, &lowest, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  if (lowest < size_) throw share_failure(lowest, 0, {});
+}
+
+RanksFailed Communicator::report_start_failure(int code, const std::string& message) const {
+  if (started_ || size_ == 1) return RanksFailed(code, rank_, message);
+  started_ = true;
+  int lowest = rank_;
+  MPI_Allreduce(MPI_IN_PLACE, &lowest, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  return share_failure(lowest, code, lowest == rank_ ? message : std::string());
+}
+
 bool Communicator::launched_by_mpi() {
   return has_env("OMPI_COMM_WORLD_SIZE") || has_env("PMIX_RANK") || has_env("PMI_SIZE");
+}
+
+int Communicator::launcher_rank() {
+  for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK"})
+    if (has_env(name)) return std::atoi(std::getenv(name));
+  return -1;
 }
 
 Communicator& Communicator::world() {
@@ -62,6 +98,7 @@ Communicator& Communicator::world() {
 }
 
 void Communicator::sum(std::span<ExactSum> sums) const {
+  start();
   if (size_ == 1 || sums.empty()) return;
   constexpr int kd = ExactSum::kDigits;
   std::vector<std::int64_t> limbs(sums.size() * kd);
@@ -84,22 +121,26 @@ void Communicator::sum(std::span<ExactSum> sums) const {
 }
 
 double Communicator::min(double x) const {
+  start();
   if (size_ > 1) MPI_Allreduce(MPI_IN_PLACE, &x, 1, MPI_DOUBLE, MPI_MIN, MPI_COMM_WORLD);
   return x;
 }
 
 void Communicator::min(std::span<double> x) const {
+  start();
   if (size_ > 1 && !x.empty())
     MPI_Allreduce(MPI_IN_PLACE, x.data(), static_cast<int>(x.size()), MPI_DOUBLE, MPI_MIN,
                   MPI_COMM_WORLD);
 }
 
 std::int64_t Communicator::min(std::int64_t x) const {
+  start();
   if (size_ > 1) MPI_Allreduce(MPI_IN_PLACE, &x, 1, MPI_INT64_T, MPI_MIN, MPI_COMM_WORLD);
   return x;
 }
 
 bool Communicator::all(bool flag) const {
+  start();
   int f = flag ? 1 : 0;
   if (size_ > 1) MPI_Allreduce(MPI_IN_PLACE, &f, 1, MPI_INT, MPI_LAND, MPI_COMM_WORLD);
   return f != 0;
@@ -111,6 +152,7 @@ void Communicator::exchange(const LocalPart& part, double* values, int width) co
 
 void Communicator::exchange(std::span<const LocalPart::Neighbour> lists, const double* from,
                             double* to, int width) const {
+  start();
   if (size_ == 1 || lists.empty()) return;
   auto& send = send_buffers();
   auto& recv = receive_buffers();
@@ -146,6 +188,7 @@ void Communicator::exchange(std::span<const LocalPart::Neighbour> lists, const d
 
 std::vector<std::vector<std::byte>> Communicator::exchange_bytes(
     std::span<const int> ranks, const std::vector<std::vector<std::byte>>& to) const {
+  start();
   std::vector<std::vector<std::byte>> from(ranks.size());
   if (size_ == 1 || ranks.empty()) return from;
   constexpr int kTag = 25;
@@ -168,6 +211,7 @@ std::vector<std::vector<std::byte>> Communicator::exchange_bytes(
 
 std::vector<std::vector<std::byte>> Communicator::all_gather(
     std::span<const std::byte> mine) const {
+  start();
   std::vector<std::vector<std::byte>> all(static_cast<std::size_t>(size_));
   if (size_ == 1) {
     all[0].assign(mine.begin(), mine.end());
@@ -187,6 +231,7 @@ std::vector<std::vector<std::byte>> Communicator::all_gather(
 
 std::vector<std::vector<std::byte>> Communicator::all_to_all(
     const std::vector<std::vector<std::byte>>& to_each) const {
+  start();
   std::vector<std::vector<std::byte>> from(static_cast<std::size_t>(size_));
   if (size_ == 1) {
     from[0] = to_each.at(0);
@@ -238,6 +283,7 @@ std::vector<std::byte> receive_bytes(int from) {
 }  // namespace
 
 std::vector<std::vector<std::byte>> Communicator::gather(std::span<const std::byte> mine) const {
+  start();
   std::vector<std::vector<std::byte>> all;
   if (rank_ != 0) {
     send_bytes(mine, 0);
@@ -249,6 +295,7 @@ std::vector<std::vector<std::byte>> Communicator::gather(std::span<const std::by
 }
 
 void Communicator::broadcast(std::vector<std::byte>& bytes) const {
+  start();
   if (size_ == 1) return;
   std::uint64_t n = bytes.size();
   MPI_Bcast(&n, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
@@ -259,6 +306,7 @@ void Communicator::broadcast(std::vector<std::byte>& bytes) const {
 }
 
 void Communicator::broadcast(void* data, std::size_t bytes) const {
+  start();
   if (size_ > 1) MPI_Bcast(data, static_cast<int>(bytes), MPI_BYTE, 0, MPI_COMM_WORLD);
 }
 

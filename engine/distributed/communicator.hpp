@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -16,10 +17,23 @@
 
 namespace femdem {
 
+// Some ranks failed before the ranks' first step together (reading the scene or the checkpoint,
+// building the model or a part), as all ranks agreed (Communicator::report_start_failure):
+// thrown on the ranks that did not fail, which then exit with `code` and say nothing (the
+// lowest failing rank says why).
+struct RanksFailed : std::runtime_error {
+  RanksFailed(int exit_code, int failed_rank, const std::string& message)
+      : std::runtime_error(message), code(exit_code), rank(failed_rank) {}
+  int code;
+  int rank;
+};
+
 class Communicator {
  public:
   // True when a launcher started this process as one of several ranks (its environment says so).
   static bool launched_by_mpi();
+  // This process's rank as its launcher's environment gives it (before MPI starts), or -1.
+  static int launcher_rank();
   // The world of this run: on first use starts MPI if launched by mpirun (and stops it at
   // exit), else a world of one rank.
   static Communicator& world();
@@ -61,10 +75,28 @@ class Communicator {
   // Stops every rank with `code` (what a failing rank calls, so that none waits for it forever).
   [[noreturn]] void abort(int code) const;
 
+  // The start. Each rank reads its input by itself, and one may fail where the others do not (a
+  // file it cannot read); had it stopped, the others would wait in their first collective call
+  // forever. So the first collective call of every rank first agrees that no rank has failed
+  // (else it throws RanksFailed), and a rank that fails before its first collective call reports
+  // here instead, with its exit code and message: every rank learns the lowest failing rank's,
+  // which this returns. Called once, before any other collective call (else it returns this
+  // rank's own failure without asking the others).
+  RanksFailed report_start_failure(int code, const std::string& message) const;
+  // Whether the ranks have agreed to start; from then on a rank that fails alone stops them all.
+  bool started() const { return started_; }
+  // Whether the ranks are ending together (rank 0 sent, or this rank received, the command to
+  // stop): a rank may then end with its own exit code without stopping the others.
+  bool ending() const { return ending_; }
+  void set_ending() const { ending_ = true; }
+
  private:
   Communicator(int rank, int size, int size_here)
       : rank_(rank), size_(size), size_here_(size_here) {}
+  // The start agreement of a rank that has not failed (at its first collective call).
+  void start() const;
   int rank_ = 0, size_ = 1, size_here_ = 1;
+  mutable bool started_ = false, ending_ = false;
 };
 
 }  // namespace femdem

@@ -16,6 +16,7 @@
 // 2 and 3 ranks); the 64-sphere compaction (scenes/compaction_64_spheres.toml) in small.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -482,11 +483,44 @@ mesh = { file = ")") + FEMDEM_SOURCE_DIR + "/tests/data/two_tet10_v41.msh\" }\n"
                                                         .c_str());
   const CommandResult small = run(3, tiny, tmp_dir() / "two_elements");
   expect_refused_once(small, "cannot be split among 3 ranks");
+  // a layout of ranks and threads that cannot be: refused once, every rank exits 2
+  const CommandResult threads = femdem(2, "run '" + scene.string() + "' --threads -2");
+  expect_refused_once(threads, "--threads");
   // commands other than run and resume run as one process
   const CommandResult check = femdem(2, "check '" + scene.string() + "'");
   EXPECT_EQ(check.code, 2) << check.output;
   EXPECT_NE(check.output.find("only run and resume take several ranks"), std::string::npos)
       << check.output;
+}
+
+// A rank that cannot read its scene while rank 0 can (as on a cluster whose ranks do not share
+// the folder; here mpirun gives each rank its own command line): every rank exits 2 at once,
+// rank 1 saying why, once, and nothing is written. (Before the start agreement rank 0 waited for
+// rank 1 in its first collective call forever.)
+TEST(DistributedRunRefusal, ARankThatCannotReadItsSceneStopsEveryRank) {
+  const fs::path scene = write_scene("readable_bar", kElasticBar);
+  const fs::path missing = tmp_dir() / "no_such_scene.toml";
+  const fs::path out = tmp_dir() / "one_rank_fails";
+  fs::remove_all(out);
+  const std::string rank =
+      std::string(" -np 1 -x OMP_NUM_THREADS=1 -x ASAN_OPTIONS=detect_leaks=0 '") + FEMDEM_EXE +
+      "' run ";
+  const std::string tail = " --quiet --threads 1 --out '" + out.string() + "'";
+  const auto start = std::chrono::steady_clock::now();
+  const CommandResult c = run_command(
+      "timeout 120 '" + std::string(FEMDEM_MPIEXEC) + "' --oversubscribe --allow-run-as-root" +
+      rank + "'" + scene.string() + "'" + tail + " :" + rank + "'" + missing.string() + "'" + tail);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(c.code, 2) << c.output;  // (124: timeout's, the ranks hung)
+  EXPECT_LT(seconds, 60.0) << c.output;
+  const std::string said = "error (rank 1 of 2): ";
+  const auto at = c.output.find(said);
+  ASSERT_NE(at, std::string::npos) << c.output;
+  EXPECT_NE(c.output.find("no_such_scene.toml", at), std::string::npos) << c.output;
+  EXPECT_EQ(c.output.find(said, at + 1), std::string::npos) << c.output;  // (once)
+  EXPECT_EQ(c.output.find("error: "), std::string::npos) << c.output;     // (rank 0 quiet)
+  EXPECT_FALSE(fs::exists(out / "results.h5"));
 }
 
 // `femdem sweep --launcher 'mpirun -np 2'`: every run of the sweep on 2 ranks, each the run one

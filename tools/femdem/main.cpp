@@ -346,14 +346,43 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);  // prints help/version (code 0) or the error
+    // (every rank of an mpirun finds the same command line wrong: rank 0 alone says so)
+    const int code =
+        femdem::Communicator::launcher_rank() > 0 ? e.get_exit_code() : app.exit(e);
     return code == 0 ? kExitOk : kExitBadInput;
   }
 
-  // Under mpirun every rank runs this; rank 0 reports what all ranks find alike (bad input, a
-  // diverging run), the others stay quiet then. A failure of one rank alone stops them all.
+  // Under mpirun every rank runs this. Before the ranks' first step together, a failure of some
+  // ranks (bad input all find alike, or a file one cannot read) is agreed by all: the lowest
+  // failing rank says why (rank 0 when all fail alike) and every rank exits with its code. When
+  // the ranks end together (rank 0 stopped them), rank 0 reports (bad input, a diverging run),
+  // the others stay quiet. Any other failure of a rank stops them all.
   const femdem::Communicator& world = femdem::Communicator::world();
-  const bool reports = world.rank() == 0;
+  auto failed = [&world](int code, const std::string& message) {
+    if (world.size() == 1) {
+      std::fprintf(stderr, "error: %s\n", message.c_str());
+      return code;
+    }
+    auto say = [&] {
+      if (world.rank() == 0)
+        std::fprintf(stderr, "error: %s\n", message.c_str());
+      else
+        std::fprintf(stderr, "error (rank %d of %d): %s\n", world.rank(), world.size(),
+                     message.c_str());
+    };
+    if (!world.started()) {
+      const femdem::RanksFailed agreed = world.report_start_failure(code, message);
+      if (agreed.rank == world.rank()) say();
+      return agreed.code;
+    }
+    if (world.ending()) {
+      if (world.rank() == 0) say();
+      return code;
+    }
+    std::fprintf(stderr, "error (rank %d of %d): %s\n", world.rank(), world.size(),
+                 message.c_str());
+    world.abort(code);
+  };
   try {
     if (world.size() > 1 && !commands[0].app->parsed() && !commands[1].app->parsed())
       throw femdem::InputError("femdem " + app.get_subcommands().front()->get_name() +
@@ -361,20 +390,14 @@ int main(int argc, char** argv) {
                                "(mpirun -np N femdem run SCENE)");
     for (const Command& c : commands)
       if (c.app->parsed()) return c.action();
+  } catch (const femdem::RanksFailed& e) {
+    return e.code;  // (another rank failed before the start and said why)
   } catch (const femdem::InputError& e) {
-    if (reports) std::fprintf(stderr, "error: %s\n", e.describe().c_str());
-    return kExitBadInput;
+    return failed(kExitBadInput, e.describe());
   } catch (const femdem::InstabilityError& e) {
-    if (reports) std::fprintf(stderr, "error: the simulation became unstable: %s\n", e.what());
-    return kExitUnstable;
+    return failed(kExitUnstable, std::string("the simulation became unstable: ") + e.what());
   } catch (const std::exception& e) {
-    if (world.size() == 1) {
-      std::fprintf(stderr, "error: %s\n", e.what());
-      return kExitFailure;
-    }
-    std::fprintf(stderr, "error (rank %d of %d): %s\n", world.rank(), world.size(), e.what());
-    if (!reports) world.abort(kExitFailure);  // (rank 0 has stopped the others already)
-    return kExitFailure;
+    return failed(kExitFailure, e.what());
   }
   return kExitFailure;
 }

@@ -21,7 +21,9 @@ RankGroup::RankGroup(const Model& whole, const Communicator& comm)
 void RankGroup::build_part(const Model& whole) {
   local_.reset();
   dist_.part = local_part(whole, partition_, comm_.rank(), ghost_layers(whole));
-  local_ = std::make_unique<Simulation>(local_model(whole, dist_.part), dist_);
+  Model local = local_model(whole, dist_.part);
+  Simulation::check_distributable(local, dist_.part);  // (before the first collective call)
+  local_ = std::make_unique<Simulation>(std::move(local), dist_);
   ghosts_sent_.clear();
   std::int64_t sent = 0;
   for (const LocalPart::Neighbour& n : dist_.part.neighbours)
@@ -161,6 +163,7 @@ void RankGroup::redeal(Simulation* view, std::vector<std::int32_t> element_rank)
 void RankGroup::stop() {
   stopped_ = true;
   send(Command::stop);
+  comm_.set_ending();  // (rank 0 may now end with its own exit code)
 }
 
 void RankGroup::follow() {
@@ -205,6 +208,7 @@ void RankGroup::follow() {
         break;
       case Command::stop:
         stopped_ = true;
+        comm_.set_ending();
         if (unstable) throw *unstable;
         return;
     }
