@@ -692,10 +692,13 @@ void BodyContact::list_shared_pairs() {
     if (sent) outbox_pairs_.push_back(static_cast<std::int32_t>(q));
   }
   shared_lists_.clear();
+  shared_ranks_.clear();
   for (int r = 0; r < ranks; ++r) {
     lists[r].rank = r;
-    if (!lists[r].send.empty() || !lists[r].receive.empty())
+    if (!lists[r].send.empty() || !lists[r].receive.empty()) {
       shared_lists_.push_back(std::move(lists[r]));
+      shared_ranks_.push_back(r);
+    }
   }
   // Both sides must name the same pairs in the same order, or a step would wait for records
   // never sent: checked here, where a collective cannot hang.
@@ -717,13 +720,11 @@ void BodyContact::list_shared_pairs() {
 
 void BodyContact::share_outcomes() {
   const std::size_t nb = shared_lists_.size();
-  std::vector<int> ranks(nb);
   outboxes_.resize(nb);
   double record[kSpringDoubles + kOutcomeDoubles];
   shared_records_ = shared_bytes_ = 0;
   for (std::size_t k = 0; k < nb; ++k) {
     const LocalPart::Neighbour& n = shared_lists_[k];
-    ranks[k] = n.rank;
     std::vector<std::byte>& out = outboxes_[k];
     out.resize(n.send.size());  // the flags, then the records
     for (std::size_t s = 0; s < n.send.size(); ++s) {
@@ -739,7 +740,8 @@ void BodyContact::share_outcomes() {
     shared_records_ += n.send.size();
     shared_bytes_ += out.size();
   }
-  const std::vector<std::vector<std::byte>> in = dist_->comm->exchange_bytes(ranks, outboxes_);
+  const std::vector<std::vector<std::byte>> in =
+      dist_->comm->exchange_bytes(shared_ranks_, outboxes_);
   for (std::size_t k = 0; k < nb; ++k) {
     const LocalPart::Neighbour& n = shared_lists_[k];
     const std::vector<std::byte>& got = in[k];

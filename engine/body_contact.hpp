@@ -213,6 +213,7 @@ class BodyContact final : public ContactModel {
   // The pairs shared with other ranks: the lists (send: slots of outbox_pairs_, receive: slots of
   // inbox_pairs_, each the index of a listed pair), and this step's messages.
   std::vector<LocalPart::Neighbour> shared_lists_;
+  std::vector<int> shared_ranks_;  // the ranks of shared_lists_, in its order
   std::vector<std::int32_t> outbox_pairs_, inbox_pairs_;
   std::vector<std::vector<std::byte>> outboxes_;
   std::size_t shared_records_ = 0, shared_bytes_ = 0;  // sent by this rank in the last step
