@@ -37,8 +37,10 @@ fs::path dir() {
   return d;
 }
 
-fs::path scene() {
-  const fs::path p = dir() / "ball.toml";
+// Each test writes its own scene file: ctest runs these tests side by side, and a file rewritten
+// (truncated) by one test while another's femdem reads it would be read empty.
+fs::path scene(const std::string& test) {
+  const fs::path p = dir() / (test + ".toml");
   std::ofstream(p) << kScene;
   return p;
 }
@@ -55,15 +57,15 @@ CommandResult femdem(const std::string& args, const fs::path& cwd = {}) {
   return run_command(cd + "'" + FEMDEM_EXE + "' " + args);
 }
 
-std::string run_args(const fs::path& out, const std::string& more = "") {
-  return "run '" + scene().string() + "' --quiet --threads 1 --out '" + out.string() + "' " + more;
+std::string run_args(const fs::path& scene, const fs::path& out, const std::string& more = "") {
+  return "run '" + scene.string() + "' --quiet --threads 1 --out '" + out.string() + "' " + more;
 }
 
 TEST(OutputFolder, AnEmptyOutIsRefusedAndNothingIsWritten) {
   const fs::path cwd = dir() / "empty_out";
   fs::remove_all(cwd);
   fs::create_directories(cwd);
-  const CommandResult r = femdem("run '" + scene().string() + "' --quiet --out ''", cwd);
+  const CommandResult r = femdem("run '" + scene("empty_out").string() + "' --quiet --out ''", cwd);
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("--out: the output folder's name is empty"), std::string::npos)
       << r.output;
@@ -71,11 +73,11 @@ TEST(OutputFolder, AnEmptyOutIsRefusedAndNothingIsWritten) {
 }
 
 TEST(OutputFolder, AnEarlierRunIsNotOverwrittenWithoutForce) {
-  const fs::path out = dir() / "earlier";
+  const fs::path out = dir() / "earlier", ball = scene("earlier");
   fs::remove_all(out);
-  ASSERT_EQ(femdem(run_args(out)).code, 0);
+  ASSERT_EQ(femdem(run_args(ball, out)).code, 0);
   const std::string summary = read_text(out / "summary.json");
-  CommandResult r = femdem(run_args(out, "--set simulation.end_time=1e-5"));
+  CommandResult r = femdem(run_args(ball, out, "--set simulation.end_time=1e-5"));
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.output.find("holds the outputs of a run that completed: --force replaces them, "
                           "`femdem resume " +
@@ -85,20 +87,20 @@ TEST(OutputFolder, AnEarlierRunIsNotOverwrittenWithoutForce) {
   EXPECT_EQ(read_text(out / "summary.json"), summary) << "the refused run changed the folder";
   // a killed run (no summary) is named as such
   fs::remove(out / "summary.json");
-  r = femdem(run_args(out));
+  r = femdem(run_args(ball, out));
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.output.find("a run that was killed (a checkpoint, no summary)"), std::string::npos)
       << r.output;
   // --force replaces it
-  r = femdem(run_args(out, "--force --set simulation.end_time=1e-5"));
+  r = femdem(run_args(ball, out, "--force --set simulation.end_time=1e-5"));
   EXPECT_EQ(r.code, 0) << r.output;
   EXPECT_EQ(nlohmann::json::parse(read_text(out / "summary.json"))["end_time"].get<double>(), 1e-5);
 }
 
 TEST(OutputFolder, InUseByARunningFemdemIsRefusedAndTheFirstRunIsUnharmed) {
-  const fs::path out = dir() / "in_use";
+  const fs::path out = dir() / "in_use", ball = scene("in_use");
   fs::remove_all(out);
-  const std::string s = scene().string(), o = out.string();
+  const std::string s = ball.string(), o = out.string();
   std::vector<std::string> args = {
       FEMDEM_EXE, "run",       s,   "--quiet", "--out",
       o,          "--threads", "1", "--set",   "simulation.end_time=4e-4"};
@@ -109,7 +111,7 @@ TEST(OutputFolder, InUseByARunningFemdemIsRefusedAndTheFirstRunIsUnharmed) {
   ASSERT_EQ(posix_spawn(&pid, FEMDEM_EXE, nullptr, nullptr, argv.data(), environ), 0);
   while (!fs::exists(out / "history.csv"))
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  const CommandResult second = femdem(run_args(out, "--force"));
+  const CommandResult second = femdem(run_args(ball, out, "--force"));
   const CommandResult resumed = femdem("resume '" + o + "' --quiet");
   int status = 0;
   waitpid(pid, &status, 0);
