@@ -13,14 +13,22 @@
 #   the modulus 4 times lower, the lift twice as fast, base friction 0.13 and 0.03.
 # SIZE "r7soft": the r7 column at the modulus 4 times lower (0.25 MPa, within 3.3 % of the
 #   scene's deposit: docs/VALIDATION.md), half the steps of r7: base friction 0.13 and 0.03 first
-#   (about 80 min each on one core), then the lift twice as fast and the soft column itself.
+#   (about 80 min each on one core), then the lift twice as fast and the soft column itself, then
+#   base friction 0.33 (the papers' middle value).
+# SIZE "aspect": other aspect ratios at the modulus of r7soft, each lifted at the papers' Froude
+#   number: a = 0.8 in the r7 tube (780 grains; the papers' 0.258 m/s at R_i 70.5 mm scaled with
+#   sqrt(R_i) to 0.152 m/s), and a = 3 in tubes of 3 and 4 grain diameters (225 and 505 grains;
+#   the tube clears the column in about 1.5 times its fall time sqrt(2 H_i / g), between the
+#   papers' 2 at a = 0.8 and 0.86 at a = 8.94: 0.26 and 0.30 m/s), to 1.5 s.
+# ONLY (optional, a space-separated list): run only these names of the SIZE's list.
 set -uo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
-femdem="${1:-$root/build/femdem}" out="${2:-out/column_variants}" size="${3:-small}"
+femdem="${1:-$root/build/femdem}" out="${2:-out/column_variants}" size="${3:-small}" only="${4:-}"
 mkdir -p "$out"
 lift() { echo "tubes.tube.velocity_history=[[0,0,0,0],[0.02,0,0,0],[0.022,0,0,$1]]"; }
 run() {  # name, options...
   local name=$1; shift
+  if [[ -n "$only" && " $only " != *" $name "* ]]; then return; fi
   OMP_NUM_THREADS=1 /usr/bin/time -f "$name: user %U s" "$femdem" run "$root/scenes/column_collapse.toml" \
     "${sized[@]}" "$@" --out "$out/$name" --force --threads 1 --quiet --no-plot 2>&1 | tail -1
 }
@@ -68,10 +76,26 @@ case "$size" in
     run soft_fast_lift --set "$(lift 0.260)" &
     run soft --set "$(lift 0.130)" &
     wait
-    names="soft soft_fast_lift soft_friction_0.13 soft_friction_0.03" ;;
-  *) echo "column_variants.sh: SIZE is small, r7 or r7soft, not '$size'" >&2; exit 2 ;;
+    run soft_friction_0.33 --set "$(lift 0.130)" --set walls.base.friction=0.33 &
+    wait
+    names="soft soft_fast_lift soft_friction_0.13 soft_friction_0.33 soft_friction_0.03" ;;
+  aspect)
+    soft=(--set materials.glass.youngs_modulus=0.25e6 --set simulation.deformation_damping.frequency=3000
+      --set simulation.end_time=1.5)
+    column() {  # radius count
+      echo --set packings.g.generate.radius=$1 --set packings.g.generate.count=$2 \
+        --set "packings.g.cache=$out/packing_$2.csv" --set tubes.tube.radius=$1
+    }
+    sized=()
+    run a0.8_r7 "${soft[@]}" $(column 24.5e-3 780) --set "$(lift 0.152)" &
+    (run a3_r3 "${soft[@]}" $(column 10.5e-3 225) --set "$(lift 0.26)"
+      run a3_r4 "${soft[@]}" $(column 14e-3 505) --set "$(lift 0.30)") &
+    wait
+    names="a0.8_r7 a3_r3 a3_r4" ;;
+  *) echo "column_variants.sh: SIZE is small, r7, r7soft or aspect, not '$size'" >&2; exit 2 ;;
 esac
 for name in $names; do
+  if [[ -n "$only" && " $only " != *" $name "* ]]; then continue; fi
   echo "== $name"
   /usr/bin/python3 "$root/tools/plot_collapse.py" "$out/$name" --start 0.02 | sed -n 1,3p
 done
