@@ -17,7 +17,7 @@
 #   base friction 0.33 (the papers' middle value).
 # SIZE "aspect": other aspect ratios at the modulus of r7soft, each lifted at the papers' Froude
 #   number: a = 0.8 in the r7 tube (780 grains; the papers' 0.258 m/s at R_i 70.5 mm scaled with
-#   sqrt(R_i) to 0.152 m/s), and a = 3 in tubes of 3 and 4 grain diameters (225 and 505 grains;
+#   sqrt(R_i) to 0.152 m/s), and a = 3 in tubes of 3 and 4 grain diameters (250 and 505 grains;
 #   the tube clears the column in about 1.5 times its fall time sqrt(2 H_i / g), between the
 #   papers' 2 at a = 0.8 and 0.86 at a = 8.94: 0.26 and 0.30 m/s), to 1.5 s.
 # ONLY (optional, a space-separated list): run only these names of the SIZE's list.
@@ -88,7 +88,7 @@ case "$size" in
     }
     sized=()
     run a0.8_r7 "${soft[@]}" $(column 24.5e-3 780) --set "$(lift 0.152)" &
-    (run a3_r3 "${soft[@]}" $(column 10.5e-3 225) --set "$(lift 0.26)"
+    (run a3_r3 "${soft[@]}" $(column 10.5e-3 250) --set "$(lift 0.26)"
       run a3_r4 "${soft[@]}" $(column 14e-3 505) --set "$(lift 0.30)") &
     wait
     names="a0.8_r7 a3_r3 a3_r4" ;;
