@@ -24,7 +24,10 @@ nodes, first and last frame), and prints and draws:
 - the laws: for a < 0.74, R_f / R_i = a / (2 mu) + sqrt(1 - a^2 / (12 mu^2)) with mu = tan of the
   repose angle (a truncated cone whose top is undisturbed: H_f = H_i); for a > 0.74,
   R_f / R_i = sqrt(3 a / 0.74) with H_f = 0.74 R_i (a cone). Repose angles by default 21 and
-  23.5 degrees (the beads' repose angle and the continuum papers' best-fit friction angle).
+  23.5 degrees (the beads' repose angle and the continuum papers' best-fit friction angle);
+  and, per law, how far the profile lies from the law's outline where that outline is at least
+  one grain diameter high (grains cannot make a thinner layer: beyond that radius they spread as
+  one layer, which lengthens the run-out of coarse grains at large a).
 The figure: the profile against the initial column and the laws' shapes, R and H in time, and
 the grains' centres at the end in (r, z), coloured by their height in the initial column (the
 layers of the papers' internal-structure test).
@@ -108,10 +111,25 @@ def main():
     print(f"{len(names)} grains, mean radius {rg * 1e3:.3f} mm; start t = {t[i0]:.4g} s, end "
           f"t = {t[-1]:.4g} s")
     cloud = (np.hypot(xyz[-1, :, 0], xyz[-1, :, 1]), xyz[-1, :, 2], xyz[i0, :, 2])
-    report(a, t, R, H, i0, h_f, (centres_r, deposit), cloud, "grain centres", 8)
+    report(a, t, R, H, i0, h_f, (centres_r, deposit), cloud, "grain centres", 8, grain=2 * rg)
 
 
-def report(a, t, R, H, i0, h_f, deposit, cloud, cloud_label, point_size, note=None):
+def thick_part(deposit, r_i, outline, grain):
+    """Where the law's deposit is at least one grain thick: the mean and largest |h - h_law| / R_i
+    of the profile there, and the radius / R_i out to which that holds. Coarse grains cannot make
+    a layer thinner than themselves, so beyond it they spread as one layer (the run-out's excess
+    at a large a)."""
+    lr, lh = outline
+    r = deposit[0] / r_i
+    h_law = np.interp(r, lr, lh, right=0.0)
+    thick = h_law >= grain / r_i
+    if not thick.any():
+        return None
+    d = np.abs(deposit[1][thick] / r_i - h_law[thick])
+    return float(d.mean()), float(d.max()), float(r[thick].max())
+
+
+def report(a, t, R, H, i0, h_f, deposit, cloud, cloud_label, point_size, note=None, grain=None):
     """Print the column, the deposit and the laws; draw the profile against the laws, R and H in
     time, and the cloud (r, z, initial z) at the end coloured by the initial height."""
     r_i, h_i, r_f = R[i0], H[i0], R[-1]
@@ -121,8 +139,12 @@ def report(a, t, R, H, i0, h_f, deposit, cloud, cloud_label, point_size, note=No
           f"{h_f * 1e3:.2f} mm (H_f / R_i = {h_f / r_i:.3f}, H_f / H_i = {h_f / h_i:.3f})")
     if note:
         print(note)
-    for label, value, _ in laws(aspect, a.repose):
+    for label, value, outline in laws(aspect, a.repose):
         print(f"  {label}: R_f / R_i = {value:.3f} (deposit {100 * (r_f / r_i / value - 1):+.1f} %)")
+        fit = thick_part(deposit, r_i, outline, grain) if grain else None
+        if fit:
+            print(f"    where it is a grain or more thick (r <= {fit[2]:.2f} R_i): profile off "
+                  f"it by {fit[0]:.3f} R_i on average, {fit[1]:.3f} R_i at most")
     if aspect > 0.74:
         print(f"  saturation H_f = 0.74 R_i: deposit {100 * (h_f / r_i / 0.74 - 1):+.1f} %")
 
