@@ -40,9 +40,10 @@ struct Wall {
   // velocities are measured against; equals `velocity` for a wall moving steadily.
   Vec3 step_velocity = Vec3::Zero();
   double friction = 0.0;
-  double penalty_factor = 0.0;  // 0: automatic (engine/contact_stiffness.hpp)
-  double damping = 0.0;         // fraction of critical damping of each node's contact spring
-  Vec3 force = Vec3::Zero();    // force the bodies exert on the wall, last step
+  double rolling_resistance = 0.0;  // mu_r of bodies on it (the contact's unless the wall sets one)
+  double penalty_factor = 0.0;      // 0: automatic (engine/contact_stiffness.hpp)
+  double damping = 0.0;             // fraction of critical damping of each node's contact spring
+  Vec3 force = Vec3::Zero();        // force the bodies exert on the wall, last step
   // Force-driven wall (WallSpec::force_history non-empty): mass, and its acceleration along the
   // normal at the last force evaluation. `velocity` is then its whole-step velocity.
   std::vector<ForcePoint> force_history;
@@ -101,6 +102,15 @@ struct Model {
   std::vector<MaterialParams> materials;
   std::vector<Body> bodies;
   std::vector<Wall> walls;
+  // Whether any contact has rolling resistance (the bodies' or a wall's own), and whether the
+  // contacts are summed into patches for loads on the rigid motions (that, or impact damping).
+  bool resists_rolling() const {
+    if (contact.rolling_resistance > 0.0) return true;
+    for (const Wall& w : walls)
+      if (w.rolling_resistance > 0.0) return true;
+    return false;
+  }
+  bool patch_loads() const { return contact.impact_damping > 0.0 || resists_rolling(); }
 
   // --- nodes (3 doubles per node for vectors) ---
   std::int32_t node_count = 0;

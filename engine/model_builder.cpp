@@ -325,6 +325,8 @@ Wall make_wall(const WallSpec& ws, const ContactSettings& contact) {
   if (!w.velocity_history.empty()) w.velocity = history_velocity(w.velocity_history, 0.0);
   w.step_velocity = w.velocity;
   w.friction = ws.friction;
+  w.rolling_resistance =
+      ws.rolling_resistance >= 0.0 ? ws.rolling_resistance : contact.rolling_resistance;
   // (0 in the model: the automatic stiffness)
   w.penalty_factor = ws.penalty_factor > 0.0   ? ws.penalty_factor
                      : ws.penalty_factor < 0.0 ? 0.0

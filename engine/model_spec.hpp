@@ -114,6 +114,10 @@ struct WallSpec {
   // `velocity` is ignored.
   std::vector<VelocityPoint> velocity_history;
   double friction = 0.0;
+  // Rolling resistance mu_r of bodies on this wall (engine/rolling_resistance.hpp); < 0:
+  // ContactSettings::rolling_resistance's. A rough base (grains glued on a plane) traps a grain
+  // rolling over it where a smooth plane of the same friction lets it roll on.
+  double rolling_resistance = -1.0;
   // > 0: this wall's factor; 0: ContactSettings::penalty_factor's; < 0 ("auto"): automatic
   double penalty_factor = 0.0;
   // Fraction of critical damping of each node's contact spring. 0 keeps contact elastic; a
@@ -178,8 +182,6 @@ struct ContactSettings {
   // Rolling resistance coefficient mu_r (engine/rolling_resistance.hpp): a moment mu_r R N
   // against the relative rolling at every contact patch. 0: off.
   double rolling_resistance = 0.0;
-  // Whether contacts are summed into patches for loads on the rigid motions.
-  bool patch_loads() const { return impact_damping > 0.0 || rolling_resistance > 0.0; }
   // The deepest overlap allowed at t = 0, between bodies or behind a wall, as a fraction of the
   // element size there (engine/initial_overlap.hpp): a packing's round-off, not a scene error.
   double initial_overlap = 0.01;

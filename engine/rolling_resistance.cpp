@@ -6,12 +6,16 @@
 
 namespace femdem {
 
-void resist_rolling(const Model& m, double mu_r, const std::vector<ContactPatch>& patches,
-                    double dt, PatchLoads& s) {
+void resist_rolling(const Model& m, const std::vector<ContactPatch>& patches, double dt,
+                    PatchLoads& s) {
   auto free_body = [&](std::int32_t b) { return b >= 0 && !m.bodies[b].fixed; };
   for (std::size_t q = 0; q < patches.size(); ++q) {
     const ContactPatch& p = patches[q];
     if (!patch_acts(p)) continue;
+    const double mu_r = p.body_b < 0
+                            ? m.walls[static_cast<std::size_t>(-1 - p.body_b)].rolling_resistance
+                            : m.contact.rolling_resistance;
+    if (!(mu_r > 0.0)) continue;
     const double N = p.force_on_a.norm();
     const Vec3 n = p.force_on_a / N;
     const Vec3 x = p.point();

@@ -15,7 +15,8 @@
 // would flip sign every step at rest, and this keeps the explicit update stable while a
 // rolling pair slows at the full mu_r R N. It acts on the rigid motions only (a rigid load,
 // engine/rigid_motion.hpp) and is equal and opposite on the two bodies; its work, M . omega
-// <= 0, is contact dissipation. `contact.rolling_resistance` sets mu_r (0: off).
+// <= 0, is contact dissipation. `contact.rolling_resistance` sets mu_r (0: off); a wall's own
+// `rolling_resistance` sets it for the bodies on that wall.
 #include <vector>
 
 #include "engine/contact_patch.hpp"
@@ -25,8 +26,9 @@
 namespace femdem {
 
 // Adds the rolling-resistance moments of the patches to the loads (prepare_patch_loads first)
-// and their power (<= 0) to s.power. dt: the step the cap is set for.
-void resist_rolling(const Model& m, double mu_r, const std::vector<ContactPatch>& patches,
-                    double dt, PatchLoads& s);
+// and their power (<= 0) to s.power: mu_r is the wall's on a wall's patch, the contact's on the
+// others. dt: the step the cap is set for.
+void resist_rolling(const Model& m, const std::vector<ContactPatch>& patches, double dt,
+                    PatchLoads& s);
 
 }  // namespace femdem

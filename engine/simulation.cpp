@@ -46,7 +46,7 @@ Simulation::Simulation(Model model, std::optional<Distribution> distribution)
       dist_(std::move(distribution)),
       kernels_(compile_kernels(model_.materials)),
       element_pass_(model_, kernels_),
-      wall_contact_(model_, model_.contact.patch_loads(), dist_ ? &*dist_ : nullptr),
+      wall_contact_(model_, model_.patch_loads(), dist_ ? &*dist_ : nullptr),
       body_contact_(model_, dist_ ? &*dist_ : nullptr) {
   const auto nn = static_cast<std::size_t>(model_.node_count);
   const auto ne = static_cast<std::size_t>(model_.element_count);
@@ -108,7 +108,7 @@ Simulation::Simulation(Model model, std::optional<Distribution> distribution)
   reduce(floor);
   energy_floor_ = floor[0].value();
   elem_scratch_.assign(ne, 0.0);
-  if (model_.contact.patch_loads()) {
+  if (model_.patch_loads()) {
     patch_loads_.resize(model_.bodies.size());
     body_contact_.collect_patches(true);
   }
@@ -242,7 +242,7 @@ void Simulation::compute_forces(double step_dt) {
   for (ContactModel* c : contacts)
     if (c->active()) c->compute(m, step_dt, m.f_contact, sums);
   // 3c. impact damping and rolling resistance on the bodies' rigid motions, per contact patch
-  if (m.contact.patch_loads()) {
+  if (m.patch_loads()) {
     patches_.clear();
     body_contact_.append_patches(patches_);
     wall_contact_.append_patches(patches_);
@@ -250,8 +250,7 @@ void Simulation::compute_forces(double step_dt) {
     if (dist_) share_patch_motions(m, *dist_, patches_, patch_loads_);
     if (m.contact.impact_damping > 0.0)
       damp_impacts(m, m.contact.impact_damping, patches_, patch_loads_);
-    if (m.contact.rolling_resistance > 0.0)
-      resist_rolling(m, m.contact.rolling_resistance, patches_, step_dt, patch_loads_);
+    if (m.resists_rolling()) resist_rolling(m, patches_, step_dt, patch_loads_);
     // their power and the walls' reactions, each counted once over the ranks
     std::vector<ExactSum>& loads = patch_loads_.wall_force;
     loads.push_back(patch_loads_.power);
@@ -330,7 +329,7 @@ void Simulation::check_distributable(const Model& m, const LocalPart& part) {
   const bool cut = std::find(body_rank.begin(), body_rank.end(), -1) != body_rank.end();
   if (cut && s.deformation_damping > 0.0)
     missing = "simulation.deformation_damping on a body cut among ranks";
-  else if (cut && m.contact.patch_loads())
+  else if (cut && m.patch_loads())
     missing = "contact.impact_damping or rolling_resistance on a body cut among ranks";
 
   if (!missing.empty())

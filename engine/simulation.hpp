@@ -198,7 +198,7 @@ class Simulation {
   std::vector<double> body_added_at_start_;  // per body: what the scaling before step 1 added
   WallContact wall_contact_;
   BodyContact body_contact_;
-  // impact damping and rolling resistance (ContactSettings::patch_loads()): all patches of the
+  // impact damping and rolling resistance (Model::patch_loads()): all patches of the
   // step, and the rigid motions of the bodies in them with their loads
   std::vector<ContactPatch> patches_;
   PatchLoads patch_loads_;

@@ -96,7 +96,7 @@ void Reader::read_walls(const toml::table& root, ModelSpec& spec, toml::array& o
     ++index;
     check_keys(t, p,
                {"name", "point", "normal", "velocity", "velocity_history", "friction",
-                "penalty_factor", "damping", "force_history", "mass"});
+                "rolling_resistance", "penalty_factor", "damping", "force_history", "mass"});
     WallSpec w;
     w.name = entry_name(t, p, names, "wall", "wall" + std::to_string(index));
     w.point = opt_vec3(t, "point", p).value_or(Vec3::Zero());
@@ -148,6 +148,13 @@ void Reader::read_walls(const toml::table& root, ModelSpec& spec, toml::array& o
     if (w.friction < 0.0)
       fail(t.get("friction"), dotted(p, "friction"),
            "must not be negative, got " + format_number(w.friction));
+    if (t.contains("rolling_resistance")) {
+      w.rolling_resistance = number(t, "rolling_resistance", p, std::nullopt, &t);
+      if (!(w.rolling_resistance >= 0.0 && w.rolling_resistance <= 1.0))
+        fail(t.get("rolling_resistance"), dotted(p, "rolling_resistance"),
+             "must be a coefficient in [0, 1] (the lever arm over the rolling radius), got " +
+                 format_number(w.rolling_resistance));
+    }
     if (const auto pf = opt_penalty_factor(t, p)) w.penalty_factor = *pf > 0.0 ? *pf : -1.0;
     toml::table o;
     o.insert_or_assign("name", w.name);
@@ -159,6 +166,7 @@ void Reader::read_walls(const toml::table& root, ModelSpec& spec, toml::array& o
       o.insert_or_assign("velocity_history", velocity_history_rows(w.velocity_history));
     }
     o.insert_or_assign("friction", w.friction);
+    if (w.rolling_resistance >= 0.0) o.insert_or_assign("rolling_resistance", w.rolling_resistance);
     if (w.penalty_factor > 0.0) o.insert_or_assign("penalty_factor", w.penalty_factor);
     if (w.penalty_factor < 0.0) o.insert_or_assign("penalty_factor", "auto");
     w.damping = number(t, "damping", p, 0.0, &t);

@@ -29,7 +29,8 @@ struct Spin {
 
 // floor: a wall, or (fixed_body) a fixed meshed slab listed before the ball, so that the slab is
 // side a of their contact patch
-Spin spin(const std::string& name, double mu_r, bool fixed_body = false) {
+Spin spin(const std::string& name, double mu_r, bool fixed_body = false,
+          const std::string& wall_keys = "") {
   const std::string head = R"(title = "spinning ball"
 [simulation]
 end_time = 0.04
@@ -57,7 +58,7 @@ mesh = { generator = "sphere", radius = 0.01, element_size = 0.005 }
 position = [0, 0, 0.01]
 angular_velocity = [0, 100, 0]
 )";
-  const std::string wall = "[[walls]]\nname = \"floor\"\n";
+  const std::string wall = "[[walls]]\nname = \"floor\"\n" + wall_keys;
   const std::string scene = head + (fixed_body ? slab + ball : ball + wall) +
                             "[contact]\nrolling_resistance = " + std::to_string(mu_r) + "\n";
   const auto run = femdem::test::run_scene_text("rolling_resistance/" + name, scene);
@@ -107,4 +108,24 @@ TEST(RollingResistance, ItBrakesABallSpinningOnAFixedBodyToo) {
   // would take nothing.
   EXPECT_NEAR(work, expected, 0.1 * expected);
   for (const double e : braked.h.at("energy_balance_error")) EXPECT_LT(std::fabs(e), 0.01);
+}
+
+// A wall's own rolling_resistance: it brakes the ball on that wall as the contact's does when
+// the contact has none, and a wall's 0 turns the contact's off on that wall (the base of a granular
+// column may be rougher, or smoother, than the grains).
+TEST(RollingResistance, AWallsOwnCoefficientReplacesTheContactsOnThatWall) {
+  const double mu_r = 0.05;
+  const Spin own = spin("wall_own", 0.0, false, "rolling_resistance = 0.05\n");
+  const Spin off = spin("wall_off", mu_r, false, "rolling_resistance = 0\n");
+  const double m = own.summary["bodies"]["ball"]["mass"].get<double>();
+  const double w_end = own.summary["bodies"]["ball"]["angular_velocity"][1].get<double>();
+  const double work = own.h.at("contact_dissipation").back();
+  const double expected = mu_r * kR * m * kG * 0.5 * (kOmega + w_end) * kT;
+  EXPECT_NEAR(work, expected, 0.05 * expected);
+  EXPECT_LT(w_end, 0.99 * kOmega);
+  EXPECT_EQ(off.h.at("contact_dissipation").back(), 0.0);
+  EXPECT_NEAR(off.summary["bodies"]["ball"]["angular_velocity"][1].get<double>(), kOmega,
+              0.01 * kOmega);
+  for (const Spin* s : {&own, &off})
+    for (const double e : s->h.at("energy_balance_error")) EXPECT_LT(std::fabs(e), 0.01);
 }

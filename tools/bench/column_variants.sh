@@ -19,7 +19,11 @@
 #   number: a = 0.8 in the r7 tube (780 grains; the papers' 0.258 m/s at R_i 70.5 mm scaled with
 #   sqrt(R_i) to 0.152 m/s), and a = 3 in tubes of 3 and 4 grain diameters (250 and 505 grains;
 #   the tube clears the column in about 1.5 times its fall time sqrt(2 H_i / g), between the
-#   papers' 2 at a = 0.8 and 0.86 at a = 8.94: 0.26 and 0.30 m/s), to 1.5 s.
+#   papers' 2 at a = 0.8 and 0.86 at a = 8.94: 0.26 and 0.30 m/s), to 1.5 s; then the a = 3
+#   column of 3 diameters on rough bases (the base's rolling resistance 0.3 and 0.5: a grain in
+#   a pocket of a layer of glued grains of its size must lift its centre over its supports to
+#   roll out, a lever of 0.29 of its radius over the saddle of two close-packed supports and
+#   0.58 over one).
 # ONLY (optional, a space-separated list): run only these names of the SIZE's list.
 set -uo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
@@ -89,9 +93,13 @@ case "$size" in
     sized=()
     run a0.8_r7 "${soft[@]}" $(column 24.5e-3 780) --set "$(lift 0.152)" &
     (run a3_r3 "${soft[@]}" $(column 10.5e-3 250) --set "$(lift 0.26)"
-      run a3_r4 "${soft[@]}" $(column 14e-3 505) --set "$(lift 0.30)") &
+      run a3_r4 "${soft[@]}" $(column 14e-3 505) --set "$(lift 0.30)"
+      for mu_r in 0.5 0.3; do
+        run a3_r3_rough_base_$mu_r "${soft[@]}" $(column 10.5e-3 250) --set "$(lift 0.26)" \
+          --set walls.base.rolling_resistance=$mu_r
+      done) &
     wait
-    names="a0.8_r7 a3_r3 a3_r4" ;;
+    names="a0.8_r7 a3_r3 a3_r4 a3_r3_rough_base_0.5 a3_r3_rough_base_0.3" ;;
   *) echo "column_variants.sh: SIZE is small, r7, r7soft or aspect, not '$size'" >&2; exit 2 ;;
 esac
 for name in $names; do

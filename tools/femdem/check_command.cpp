@@ -132,6 +132,9 @@ void print_scene_summary(const SceneFile& scene) {
                                                 : m.contact.penalty_factor,
                        true),
           w.damping);
+      if (w.rolling_resistance >= 0.0)
+        fmt::print("    rolling resistance {:g} on this wall (the contact's: {:g})\n",
+                   w.rolling_resistance, m.contact.rolling_resistance);
       if (!w.force_history.empty())
         fmt::print(
             "    force-driven: mass {:g} kg, force history of {} points, {:g} N at t = 0, "

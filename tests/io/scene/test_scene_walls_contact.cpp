@@ -31,6 +31,8 @@ const std::vector<BadCase> kBadCases = {
   {"duplicate_body_and_wall_name", 15, R"(name = "ball")", "", "walls.ball.name", 15, "duplicate name"},
   {"zero_wall_normal", 16, "normal = [0, 0, 0]", "", "walls.floor.normal", 16, "zero vector"},
   {"negative_wall_friction", 16, "normal = [0, 0, 1]\nfriction = -0.1", "", "walls.floor.friction", 17, "must not be negative"},
+  {"wall_rolling_resistance_above_one", 16, "normal = [0, 0, 1]\nrolling_resistance = 1.5", "", "walls.floor.rolling_resistance", 17, "coefficient in [0, 1]"},
+  {"wall_rolling_resistance_negative", 16, "normal = [0, 0, 1]\nrolling_resistance = -0.1", "", "walls.floor.rolling_resistance", 17, "got -0.1"},
   {"zero_wall_penalty", 16, "normal = [0, 0, 1]\npenalty_factor = 0", "", "walls.floor.penalty_factor", 17, "must be positive"},
   {"wall_history_and_velocity", 16, "normal = [0, 0, 1]\nvelocity = [0, 0, 1]\nvelocity_history = [[0, 0, 0, 0]]", "", "walls.floor.velocity_history", 18, "not both"},
   {"wall_history_time_not_increasing", 16, "normal = [0, 0, 1]\nvelocity_history = [\n  [0, 0, 0, 0],\n  [1e-3, 0, 0, 1],\n  [1e-3, 0, 0, 2],\n]", "", "walls.floor.velocity_history", 20, "increase strictly: row 3 has t = 0.001 after t = 0.001"},
