@@ -14,8 +14,8 @@
 //
 // Everything is computed exactly (up to round-off) by clipping: phi_T is linear on each of the
 // four sub-tetrahedra (centroid + one face) where one lambda_i is the smallest, so the integrals
-// reduce to volumes and centroids of those sub-tetrahedra clipped by the other tetrahedron
-// (contact/tet_potential_integral.hpp, contact/tetrahedron_set_clip.hpp). No heap allocation;
+// reduce to volumes and first moments of those sub-tetrahedra clipped by the other tetrahedron
+// (contact/tet_potential_integral.hpp, contact/tet_regions_clip.hpp). No heap allocation;
 // early exits on disjoint boxes and on a separating face plane.
 #include <array>
 

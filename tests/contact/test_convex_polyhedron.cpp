@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The two clippers of the pair kernel's tests: the tetrahedron sets that runs use
-// (contact/tetrahedron_set_clip.hpp) and the polyhedron clipper that checks them
+// (tests/support/tetrahedron_set_clip.hpp) and the polyhedron clipper that checks them
 // (tests/support/convex_polyhedron.hpp): volumes and centroids of known solids cut out of a
 // tetrahedron (a cube, a corner, halves), invariance under the order of the planes, degenerate
 // cuts (through vertices, edges, along faces), and agreement with each other on random cuts.
@@ -13,7 +13,7 @@
 #include <random>
 #include <vector>
 
-#include "contact/tetrahedron_set_clip.hpp"
+#include "tests/support/tetrahedron_set_clip.hpp"
 
 namespace {
 

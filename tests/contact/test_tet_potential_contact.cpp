@@ -338,7 +338,12 @@ TEST(TetPotentialContact, EnergyContinuousAlongAPathThroughTheOtherTet) {
 void expect_same_as_reference(const TetCorners& a, const TetCorners& b, const char* what) {
   TetPairContact ref{}, c{};
   const bool touching = tet_potential_contact_with<ConvexPolyhedron>(a, b, kPenalty, ref);
-  EXPECT_EQ(tet_potential_contact(a, b, kPenalty, c), touching) << what;
+  const bool kernel_touching = tet_potential_contact(a, b, kPenalty, c);
+  // A corner within round-off of a face (the rotated "vertex on face") overlaps it by a sliver
+  // of about 1e-50 L^3 or by nothing, as the arithmetic falls: the two ways may differ there.
+  if (std::max(ref.overlap_volume, c.overlap_volume) > 1e-30) {
+    EXPECT_EQ(kernel_touching, touching) << what;
+  }
   const bool big = ref.overlap_volume > 1e-4;
   const double fscale = big ? 1e-12 * max_force(ref) : 1e-12 * kPenalty;
   const double escale = big ? 1e-12 * ref.energy : 1e-12 * kPenalty;

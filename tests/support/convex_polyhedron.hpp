@@ -2,8 +2,9 @@
 #pragma once
 // A convex polyhedron clipped by half-spaces, and its volume and first moment: a second clipper
 // for the tet-tet potential integral (contact/tet_potential_integral.hpp), independent of the
-// tetrahedron sets that runs use (contact/tetrahedron_set_clip.hpp), so that the tests can check
-// the kernel against a different algorithm. (Measured as the kernel's clipper it was slower:
+// tetrahedron sets of the kernel (contact/tet_regions_clip.hpp) and of the tests'
+// tests/support/tetrahedron_set_clip.hpp, so that the tests can check the kernel against a
+// different algorithm. (Measured as the kernel's clipper it was slower:
 // 2.36 against 1.69 us per shallow pair, docs/PERFORMANCE.md, "Tet-tet contact pair kernel".)
 //
 // The polyhedron is stored as its vertices and, per vertex, its three neighbours in one fixed

@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // A tetrahedron clipped by half-spaces as a set of tetrahedra, and the set's volume and first
-// moment: the clipper of the pair kernel (contact/tet_potential_integral.hpp). Each plane
-// splits each piece into a tetrahedron or a triangular prism of three, so 4 planes give up to
-// 81 pieces; in practice a plane keeps most pieces whole or drops them, and this measured
-// faster than a polyhedron clipper (tests/support/convex_polyhedron.hpp, the tests' check).
+// moment: a clipper of positions for tet_potential_contact_with<Clip>
+// (contact/tet_potential_integral.hpp), checked against the polyhedron clipper of the tests
+// (tests/support/convex_polyhedron.hpp). Each plane splits each piece into a tetrahedron or a
+// triangular prism of three, so 4 planes give up to 81 pieces. It was the kernel's clipper
+// (faster than the polyhedron one) until contact/tet_regions_clip.hpp, the same algorithm in
+// barycentric coordinates on the four regions at once, which runs about twice as fast.
 #include <array>
 
 #include <cmath>
