@@ -24,6 +24,11 @@
 #   a pocket of a layer of glued grains of its size must lift its centre over its supports to
 #   roll out, a lever of 0.29 of its radius over the saddle of two close-packed supports and
 #   0.58 over one).
+# SIZE "scale": the scale pair at a = 0.59 and E 0.25 MPa: the r7soft column (`soft`, 573 grains
+#   in a 24.5 mm tube) and the scene's 35 mm tube with 1,790 grains (the count that gives the
+#   same a once settled at this modulus: the scene's 1,670 gave a = 0.565 at 1 MPa, and the
+#   softer grains settle 2.5 % lower), the lift at the scene's 0.155 m/s (sqrt(R_i) scaling from
+#   0.130 m/s), on 2 threads (about 1.2 h), then the r7 one on 1 thread.
 # ONLY (optional, a space-separated list): run only these names of the SIZE's list.
 set -uo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
@@ -100,7 +105,19 @@ case "$size" in
       done) &
     wait
     names="a0.8_r7 a3_r3 a3_r4 a3_r3_rough_base_0.5 a3_r3_rough_base_0.3" ;;
-  *) echo "column_variants.sh: SIZE is small, r7, r7soft or aspect, not '$size'" >&2; exit 2 ;;
+  scale)
+    soft=(--set materials.glass.youngs_modulus=0.25e6 --set simulation.deformation_damping.frequency=3000)
+    sized=(--set packings.g.generate.count=1790 --set "packings.g.cache=$out/packing_1790.csv")
+    if [[ -z "$only" || " $only " == *" full "* ]]; then
+      "$femdem" check "$root/scenes/column_collapse.toml" "${sized[@]}" > /dev/null
+      OMP_NUM_THREADS=2 /usr/bin/time -f "full: user %U s" "$femdem" run "$root/scenes/column_collapse.toml" \
+        "${sized[@]}" "${soft[@]}" --out "$out/full" --force --threads 2 --quiet --no-plot 2>&1 | tail -1
+    fi
+    sized=(--set packings.g.generate.radius=24.5e-3 --set packings.g.generate.count=573
+      --set "packings.g.cache=$out/packing_573.csv" --set tubes.tube.radius=24.5e-3)
+    run r7 "${soft[@]}" --set "$(lift 0.130)"
+    names="full r7" ;;
+  *) echo "column_variants.sh: SIZE is small, r7, r7soft, aspect or scale, not '$size'" >&2; exit 2 ;;
 esac
 for name in $names; do
   if [[ -n "$only" && " $only " != *" $name "* ]]; then continue; fi
