@@ -23,7 +23,7 @@
 #   column of 3 diameters on rough bases (the base's rolling resistance 0.3 and 0.5: a grain in
 #   a pocket of a layer of glued grains of its size must lift its centre over its supports to
 #   roll out, a lever of 0.29 of its radius over the saddle of two close-packed supports and
-#   0.58 over one).
+#   0.58 over one), and the column of 4 diameters on the base of 0.3.
 # SIZE "scale": the scale pair at a = 0.59 and E 0.25 MPa: the r7soft column (`soft`, 573 grains
 #   in a 24.5 mm tube) and the scene's 35 mm tube with 1,790 grains (the count that gives the
 #   same a once settled at this modulus: the scene's 1,670 gave a = 0.565 at 1 MPa, and the
@@ -102,9 +102,11 @@ case "$size" in
       for mu_r in 0.5 0.3; do
         run a3_r3_rough_base_$mu_r "${soft[@]}" $(column 10.5e-3 250) --set "$(lift 0.26)" \
           --set walls.base.rolling_resistance=$mu_r
-      done) &
+      done
+      run a3_r4_rough_base_0.3 "${soft[@]}" $(column 14e-3 505) --set "$(lift 0.30)" \
+        --set walls.base.rolling_resistance=0.3) &
     wait
-    names="a0.8_r7 a3_r3 a3_r4 a3_r3_rough_base_0.5 a3_r3_rough_base_0.3" ;;
+    names="a0.8_r7 a3_r3 a3_r4 a3_r3_rough_base_0.5 a3_r3_rough_base_0.3 a3_r4_rough_base_0.3" ;;
   scale)
     soft=(--set materials.glass.youngs_modulus=0.25e6 --set simulation.deformation_damping.frequency=3000)
     sized=(--set packings.g.generate.count=1790 --set "packings.g.cache=$out/packing_1790.csv")
