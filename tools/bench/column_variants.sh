@@ -29,6 +29,10 @@
 #   same a once settled at this modulus: the scene's 1,670 gave a = 0.565 at 1 MPa, and the
 #   softer grains settle 2.5 % lower), the lift at the scene's 0.155 m/s (sqrt(R_i) scaling from
 #   0.130 m/s), on 2 threads (about 1.2 h), then the r7 one on 1 thread.
+# SIZE "rough_base": one base for every aspect ratio: the r7soft column (a = 0.59) and the a = 0.8
+#   column of "aspect" on the base of rolling resistance 0.3 that meets eq. 61 at a = 3, then the
+#   r7soft column on that base with base friction 0.13 (against 0.5: the issue's basal-friction
+#   pair on the rough base), one thread each, about 1.5 h.
 # ONLY (optional, a space-separated list): run only these names of the SIZE's list.
 set -uo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
@@ -119,7 +123,21 @@ case "$size" in
       --set "packings.g.cache=$out/packing_573.csv" --set tubes.tube.radius=24.5e-3)
     run r7 "${soft[@]}" --set "$(lift 0.130)"
     names="full r7" ;;
-  *) echo "column_variants.sh: SIZE is small, r7, r7soft, aspect or scale, not '$size'" >&2; exit 2 ;;
+  rough_base)
+    soft=(--set materials.glass.youngs_modulus=0.25e6 --set simulation.deformation_damping.frequency=3000
+      --set walls.base.rolling_resistance=0.3)
+    sized=(--set packings.g.generate.radius=24.5e-3 --set tubes.tube.radius=24.5e-3)
+    run a0.8_r7_rough_base_0.3 "${soft[@]}" --set packings.g.generate.count=780 \
+      --set "packings.g.cache=$out/packing_780.csv" --set simulation.end_time=1.5 \
+      --set "$(lift 0.152)" &
+    (run soft_rough_base_0.3 "${soft[@]}" --set packings.g.generate.count=573 \
+      --set "packings.g.cache=$out/packing_573.csv" --set "$(lift 0.130)"
+      run soft_rough_base_0.3_friction_0.13 "${soft[@]}" --set packings.g.generate.count=573 \
+        --set "packings.g.cache=$out/packing_573.csv" --set "$(lift 0.130)" \
+        --set walls.base.friction=0.13) &
+    wait
+    names="soft_rough_base_0.3 a0.8_r7_rough_base_0.3 soft_rough_base_0.3_friction_0.13" ;;
+  *) echo "column_variants.sh: SIZE is small, r7, r7soft, aspect, scale or rough_base, not '$size'" >&2; exit 2 ;;
 esac
 for name in $names; do
   if [[ -n "$only" && " $only " != *" $name "* ]]; then continue; fi
