@@ -150,14 +150,26 @@ inline bool face_separates(const Barycentric& bt, const TetCorners& o, double at
   return separated;
 }
 
+// A pair past the tests before the clipping, and the sums both halves add to: what the kernel's
+// path and the tests' reference path share.
+struct PreparedPair {
+  TetCorners a, b;  // the corners relative to A's first corner
+  Barycentric ba, bb;
+  double b_at_a[4][4], a_at_b[4][4];  // lambda_j^B at A's corner k, and the other way round
+  double p4;                          // 4 x the penalty: phi = 4 lambda_i in region i
+  double grad_a[4][3], grad_b[4][3];  // zeroed by prepare() once the pair passes (a rejected
+                                      // pair clears nothing: most candidates are rejected)
+};
+
 // The steps before the clipping: the box test, coordinates relative to A's first corner (the
 // barycentric offsets c_i would otherwise carry the absolute coordinates and lose digits for
 // small tetrahedra far from the origin), the centroid-line test, the barycentric planes and
-// the face-plane test.
-// Returns false when the pair is rejected; else b_at_a[j][k] is lambda_j^B at A's corner k and
-// a_at_b the other way round.
-inline bool prepare(const TetCorners& a_in, const TetCorners& b_in, TetCorners& a, TetCorners& b,
-                    Barycentric& ba, Barycentric& bb, double b_at_a[4][4], double a_at_b[4][4]) {
+// the face-plane test. Returns false when the pair is rejected.
+inline bool prepare(const TetCorners& a_in, const TetCorners& b_in, double penalty,
+                    PreparedPair& pair) {
+  TetCorners& a = pair.a;
+  TetCorners& b = pair.b;
+  pair.p4 = 4.0 * penalty;
   for (int d = 0; d < 3; ++d) {
     double amin = a_in[0][d], amax = amin, bmin = b_in[0][d], bmax = bmin;
     for (int k = 1; k < 4; ++k) {
@@ -176,8 +188,12 @@ inline bool prepare(const TetCorners& a_in, const TetCorners& b_in, TetCorners& 
   // The line through the centroids separates most near pairs of two bodies' surfaces, and
   // costs 8 dot products where the face planes need both inverses.
   if (centroid_line_separation(a, b) > 0.0) return false;
-  if (!barycentric(a, ba) || !barycentric(b, bb)) return false;
-  return !face_separates(ba, b, a_at_b) && !face_separates(bb, a, b_at_a);
+  if (!barycentric(a, pair.ba) || !barycentric(b, pair.bb)) return false;
+  if (face_separates(pair.ba, b, pair.a_at_b) || face_separates(pair.bb, a, pair.b_at_a))
+    return false;
+  for (int k = 0; k < 4; ++k)
+    for (int d = 0; d < 3; ++d) pair.grad_a[k][d] = pair.grad_b[k][d] = 0.0;
+  return true;
 }
 
 inline void finish(const TetCorners& a_in, double energy, const double grad_a[4][3],
@@ -270,27 +286,23 @@ inline double add_half_by_clipped_regions(const Barycentric& bt, const Barycentr
 inline bool tet_potential_contact_by_clipped_regions(const TetCorners& a_in, const TetCorners& b_in,
                                                      double penalty, TetPairContact& out) {
   using namespace potential_integral;
-  TetCorners a, b;
-  Barycentric ba, bb;
-  double b_at_a[4][4], a_at_b[4][4];
-  if (!prepare(a_in, b_in, a, b, ba, bb, b_at_a, a_at_b)) return false;
-  const double p4 = 4.0 * penalty;
-  double grad_a[4][3] = {}, grad_b[4][3] = {};
+  PreparedPair p;
+  if (!prepare(a_in, b_in, penalty, p)) return false;
   double overlap_a = 0.0, overlap_b = 0.0, lsum_a[4] = {}, lsum_b[4] = {};
-  double energy =
-      add_half_by_clipped_regions(ba, bb, b_at_a, a_at_b, p4, grad_a, grad_b, overlap_a, lsum_a);
-  energy +=
-      add_half_by_clipped_regions(bb, ba, a_at_b, b_at_a, p4, grad_b, grad_a, overlap_b, lsum_b);
+  double energy = add_half_by_clipped_regions(p.ba, p.bb, p.b_at_a, p.a_at_b, p.p4, p.grad_a,
+                                              p.grad_b, overlap_a, lsum_a);
+  energy += add_half_by_clipped_regions(p.bb, p.ba, p.a_at_b, p.b_at_a, p.p4, p.grad_b, p.grad_a,
+                                        overlap_b, lsum_b);
   if (overlap_a == 0.0 && overlap_b == 0.0) return false;
   // Both halves measure the same overlap; their mean halves the round-off. A's half integrates
   // lambda^B (first moment sum_j b_j lsum_a[j]) and B's half lambda^A.
   P3 moment;
   for (int d = 0; d < 3; ++d) {
     double m = 0.0;
-    for (int j = 0; j < 4; ++j) m += b[j][d] * lsum_a[j] + a[j][d] * lsum_b[j];
+    for (int j = 0; j < 4; ++j) m += p.b[j][d] * lsum_a[j] + p.a[j][d] * lsum_b[j];
     moment[d] = 0.5 * m;
   }
-  finish(a_in, energy, grad_a, grad_b, 0.5 * (overlap_a + overlap_b), moment, out);
+  finish(a_in, energy, p.grad_a, p.grad_b, 0.5 * (overlap_a + overlap_b), moment, out);
   return true;
 }
 
@@ -300,22 +312,19 @@ template <class Clip>
 bool tet_potential_contact_with(const TetCorners& a_in, const TetCorners& b_in, double penalty,
                                 TetPairContact& out) {
   using namespace potential_integral;
-  TetCorners a, b;
-  Barycentric ba, bb;
-  double b_at_a[4][4], a_at_b[4][4];
-  if (!prepare(a_in, b_in, a, b, ba, bb, b_at_a, a_at_b)) return false;
-  const double p4 = 4.0 * penalty;
-  double grad_a[4][3] = {}, grad_b[4][3] = {};
+  PreparedPair p;
+  if (!prepare(a_in, b_in, penalty, p)) return false;
   double overlap_a = 0.0, overlap_b = 0.0;
   P3 moment_a = {0.0, 0.0, 0.0}, moment_b = {0.0, 0.0, 0.0};
-  double energy =
-      add_half_by_regions<Clip>(a, ba, bb, b_at_a, p4, grad_a, grad_b, overlap_a, moment_a);
-  energy += add_half_by_regions<Clip>(b, bb, ba, a_at_b, p4, grad_b, grad_a, overlap_b, moment_b);
+  double energy = add_half_by_regions<Clip>(p.a, p.ba, p.bb, p.b_at_a, p.p4, p.grad_a, p.grad_b,
+                                            overlap_a, moment_a);
+  energy += add_half_by_regions<Clip>(p.b, p.bb, p.ba, p.a_at_b, p.p4, p.grad_b, p.grad_a,
+                                      overlap_b, moment_b);
   if (overlap_a == 0.0 && overlap_b == 0.0) return false;
   // Both halves measure the same overlap volume; their mean halves the round-off.
   P3 moment;
   for (int d = 0; d < 3; ++d) moment[d] = 0.5 * (moment_a[d] + moment_b[d]);
-  finish(a_in, energy, grad_a, grad_b, 0.5 * (overlap_a + overlap_b), moment, out);
+  finish(a_in, energy, p.grad_a, p.grad_b, 0.5 * (overlap_a + overlap_b), moment, out);
   return true;
 }
 
