@@ -3,7 +3,7 @@
 """The deposit of a granular column collapse (scenes/column_collapse.toml) against the run-out
 laws of Lajeunesse et al. (2004).
 
-usage: tools/plot_collapse.py OUT [-o PNG] [--start T] [--repose DEG [DEG ...]]
+usage: tools/plot_collapse.py OUT [-o PNG] [--start T] [--repose DEG [DEG ...]] [--compare OTHER]
 
 A run of one body (the continuum counterpart, scenes/column_collapse_continuum.toml) is read
 from its frames alone: R is the mean over 24 sectors of the outermost node in each, H the
@@ -28,6 +28,9 @@ nodes, first and last frame), and prints and draws:
   and, per law, how far the profile lies from the law's outline where that outline is at least
   one grain diameter high (grains cannot make a thinner layer: beyond that radius they spread as
   one layer, which lengthens the run-out of coarse grains at large a).
+With --compare OTHER (another run of grains, read the same way and from the same --start), the
+two deposits in units of their own R_i: the run-out, the height and the profile h(r) / R_i
+apart (the scale pair: the same a at two sizes).
 The figure: the profile against the initial column and the laws' shapes, R and H in time, and
 the grains' centres at the end in (r, z), coloured by their height in the initial column (the
 layers of the papers' internal-structure test).
@@ -84,17 +87,30 @@ def main():
     ap.add_argument("-o", "--output", help="figure (default OUT/collapse.png)")
     ap.add_argument("--start", type=float, default=None, help="time of the initial column (s)")
     ap.add_argument("--repose", type=float, nargs="+", default=[21.0, 23.5])
+    ap.add_argument("--compare", metavar="OTHER",
+                    help="another run of grains: its normalised deposit against OUT's")
     a = ap.parse_args()
     run = femdem.Run(a.out)
-    h = run.history
-    names, xyz = grain_columns(h)
+    names, _ = grain_columns(run.history)
     if not names:
         sys.exit(f"plot_collapse: {a.out}: no bodies in history.csv")
     if len(names) == 1:
         return continuum(a)
+    d = grain_deposit(a.out, run.history, a.start)
+    print(f"{d['grains']} grains, mean radius {d['rg'] * 1e3:.3f} mm; start t = "
+          f"{d['t'][d['i0']]:.4g} s, end t = {d['t'][-1]:.4g} s")
+    report(a, d["t"], d["R"], d["H"], d["i0"], d["h_f"], d["deposit"], d["cloud"],
+           "grain centres", 8, grain=2 * d["rg"])
+    if a.compare:
+        compare(d, grain_deposit(a.compare, femdem.Run(a.compare).history, a.start), a.compare)
+
+
+def grain_deposit(out, h, start):
+    """A run of grains: the column at `start` and the deposit at the end (see the docstring)."""
+    names, xyz = grain_columns(h)
     t = h["time"]
-    i0 = 0 if a.start is None else int(np.searchsorted(t, a.start))
-    with femdem.open_results(a.out) as res:
+    i0 = 0 if start is None else int(np.searchsorted(t, start))
+    with femdem.open_results(out) as res:
         x0, x1 = res.positions(0), res.positions(-1)
         node_body = np.asarray(res.node_body)
     # each grain's radius: its nodes' largest distance from their mean, in the first frame
@@ -105,13 +121,31 @@ def main():
             radius[b] = np.linalg.norm(p - p.mean(axis=0), axis=1).max()
     rg = float(radius[radius > 0].mean())
     R, H = run_out(xyz, rg)
-    # the deposit's profile: the highest node per ring and sector, averaged over the sectors
-    centres_r, deposit = profile(x1, rg)
-    h_f = float(x1[:, 2].max())
-    print(f"{len(names)} grains, mean radius {rg * 1e3:.3f} mm; start t = {t[i0]:.4g} s, end "
-          f"t = {t[-1]:.4g} s")
     cloud = (np.hypot(xyz[-1, :, 0], xyz[-1, :, 1]), xyz[-1, :, 2], xyz[i0, :, 2])
-    report(a, t, R, H, i0, h_f, (centres_r, deposit), cloud, "grain centres", 8, grain=2 * rg)
+    # the deposit's profile: the highest node per ring and sector, averaged over the sectors
+    return dict(grains=len(names), t=t, i0=i0, rg=rg, R=R, H=H, deposit=profile(x1, rg),
+                h_f=float(x1[:, 2].max()), cloud=cloud)
+
+
+def compare(d, e, other):
+    """Two deposits in units of their own R_i (a scale pair: the same a at two sizes; or any
+    two variants): the run-out, the height and the profile h(r) / R_i, interpolated on one
+    grid of r / R_i out to the shorter run-out; the profile's difference is given as a share
+    of the larger deposit's height, so 5 % means the two outlines lie within 5 % of H_f."""
+    def normalised(x):
+        r_i = x["R"][x["i0"]]
+        return r_i, x["R"][-1] / r_i, x["h_f"] / r_i, x["deposit"][0] / r_i, x["deposit"][1] / r_i
+    r_i, rf, hf, pr, ph = normalised(d)
+    r_j, rf2, hf2, pr2, ph2 = normalised(e)
+    print(f"against {other} ({e['grains']} grains, R_i = {r_j * 1e3:.2f} mm, a = "
+          f"{e['H'][e['i0']] / r_j:.3f}): R_f / R_i {rf:.3f} against {rf2:.3f} "
+          f"({100 * (rf / rf2 - 1):+.1f} %), H_f / R_i {hf:.3f} against {hf2:.3f} "
+          f"({100 * (hf / hf2 - 1):+.1f} %)")
+    grid = np.linspace(0.0, min(rf, rf2), 101)
+    diff = np.abs(np.interp(grid, pr, ph, right=0.0) - np.interp(grid, pr2, ph2, right=0.0))
+    top = max(hf, hf2)
+    print(f"  profile h(r) / R_i out to r = {grid[-1]:.2f} R_i: apart by {diff.mean():.3f} R_i on "
+          f"average ({100 * diff.mean() / top:.1f} % of H_f), {diff.max():.3f} R_i at most")
 
 
 def thick_part(deposit, r_i, outline, grain):
