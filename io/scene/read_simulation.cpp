@@ -27,6 +27,7 @@ void Reader::read_simulation(const toml::table& root, ModelSpec& spec, toml::tab
   check_keys(t, p,
              {"end_time",
               "time_step_safety",
+              "contact_time_step_safety",
               "time_step",
               "output_interval",
               "history_interval",
@@ -52,6 +53,12 @@ void Reader::read_simulation(const toml::table& root, ModelSpec& spec, toml::tab
     fail(t.get("time_step_safety"), "simulation.time_step_safety",
          "must be in (0, 1] (a fraction of the stable time step), got " +
              format_number(s.time_step_safety));
+  s.contact_time_step_safety =
+      positive(t, "contact_time_step_safety", p, s.contact_time_step_safety, &t);
+  if (s.contact_time_step_safety > 1.0)
+    fail(t.get("contact_time_step_safety"), "simulation.contact_time_step_safety",
+         "must be in (0, 1] (a fraction of the contact springs' own stable step), got " +
+             format_number(s.contact_time_step_safety));
   s.time_step = positive(t, "time_step", p, 0.0, &t);
   if (const auto v = opt_string(t, "stable_step", p)) {
     if (*v == "assembled")
@@ -158,6 +165,7 @@ void Reader::read_simulation(const toml::table& root, ModelSpec& spec, toml::tab
          "needs simulation.rest_kinetic_fraction (the stop-at-rest threshold)");
   out.insert_or_assign("end_time", s.end_time);
   out.insert_or_assign("time_step_safety", s.safety());
+  out.insert_or_assign("contact_time_step_safety", s.contact_time_step_safety);
   if (s.time_step > 0.0) out.insert_or_assign("time_step", s.time_step);
   const bool assembled = s.stable_step == SimulationSettings::StableStep::assembled;
   out.insert_or_assign("stable_step", assembled ? "assembled" : "element");

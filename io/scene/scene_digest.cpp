@@ -46,6 +46,10 @@ std::string value_text(const toml::node& n) {
 
 }  // namespace
 
+// What a resumed run may change: settings that act only on the steps still to come.
+// contact_time_step_safety is one (a settling run may take larger steps once its energy balance
+// has been seen); time_step_safety would be too, but the digests of checkpoints already
+// written include it, and leaving it out of the digest now would refuse them all.
 const std::vector<std::string>& resumable_keys() {
   static const std::vector<std::string> keys = {"simulation.end_time",
                                                 "simulation.output_interval",
@@ -55,7 +59,8 @@ const std::vector<std::string>& resumable_keys() {
                                                 "simulation.rest_kinetic_fraction",
                                                 "simulation.rest_hold_time",
                                                 "simulation.rebalance_threshold",
-                                                "simulation.threads"};
+                                                "simulation.threads",
+                                                "simulation.contact_time_step_safety"};
   return keys;
 }
 

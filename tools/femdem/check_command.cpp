@@ -54,7 +54,7 @@ void print_scene_summary(const SceneFile& scene) {
                s.safety(),
                s.stable_step == SimulationSettings::StableStep::assembled ? "assembled" : "element",
                s.contact_stiffness_margin() > 1.0
-                   ? fmt::format(", contact springs at {:g}", SimulationSettings::kContactSafety)
+                   ? fmt::format(", contact springs at {:g}", s.contact_safety())
                    : std::string());
   fmt::print("  output interval   {:g} s (about {} frames)\n", s.output_interval,
              static_cast<long long>(std::floor(s.end_time / s.output_interval + 1e-9)) + 1);

@@ -137,7 +137,8 @@ Command add_resume(CLI::App& app, const std::string& exe, const std::string& com
       ->add_option("--set", s->options.overrides,
                    "Change what does not alter the past: simulation.end_time, output_interval, "
                    "history_interval, checkpoint_interval, checkpoint_wall_interval, "
-                   "rest_kinetic_fraction, rest_hold_time, rebalance_threshold, threads "
+                   "rest_kinetic_fraction, rest_hold_time, rebalance_threshold, threads, "
+                   "contact_time_step_safety "
                    "(KEY=VALUE, repeatable)")
       ->allow_extra_args(false);
   resume
@@ -347,8 +348,7 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     // (every rank of an mpirun finds the same command line wrong: rank 0 alone says so)
-    const int code =
-        femdem::Communicator::launcher_rank() > 0 ? e.get_exit_code() : app.exit(e);
+    const int code = femdem::Communicator::launcher_rank() > 0 ? e.get_exit_code() : app.exit(e);
     return code == 0 ? kExitOk : kExitBadInput;
   }
 

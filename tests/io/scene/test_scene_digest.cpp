@@ -17,6 +17,7 @@ history_interval = 1e-06
 checkpoint_interval = 0.0
 checkpoint_wall_interval = 600.0
 threads = 0
+contact_time_step_safety = 0.5
 
 [[materials]]
 name = "steel"
@@ -36,6 +37,12 @@ TEST(SceneDigest, IgnoresWhatAResumeMayChangeAndSeesEverythingElse) {
   EXPECT_EQ(scene_digest(with(kScene, "end_time = 0.001", "end_time = 0.5")), d);
   EXPECT_EQ(scene_digest(with(kScene, "threads = 0", "threads = 3")), d);
   EXPECT_EQ(scene_digest(with(kScene, "output_interval = 2e-05", "output_interval = 1e-3")), d);
+  // a run resumed with other contact safety computes the rest with it; so does a checkpoint
+  // written before the key existed (its resolved scene has no such line)
+  EXPECT_EQ(scene_digest(
+                with(kScene, "contact_time_step_safety = 0.5", "contact_time_step_safety = 0.8")),
+            d);
+  EXPECT_EQ(scene_digest(with(kScene, "contact_time_step_safety = 0.5\n", "")), d);
   EXPECT_NE(scene_digest(with(kScene, "density = 7850.0", "density = 7851.0")), d);
   EXPECT_NE(scene_digest(with(kScene, "title = \"t\"", "title = \"u\"")), d);
   EXPECT_EQ(first_differing_line(scene_identity_text(kScene),
@@ -50,7 +57,8 @@ TEST(SceneDigest, ResumableSettingsAreOverridesThatReadBackExactly) {
                                              "simulation.history_interval=1e-06",
                                              "simulation.checkpoint_interval=0.0",
                                              "simulation.checkpoint_wall_interval=600.0",
-                                             "simulation.threads=0"};
+                                             "simulation.threads=0",
+                                             "simulation.contact_time_step_safety=0.5"};
   EXPECT_EQ(s, expected);
 }
 

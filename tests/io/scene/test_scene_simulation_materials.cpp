@@ -24,6 +24,8 @@ const std::vector<BadCase> kBadCases = {
   {"end_time_negative", 3, "end_time = -1.0", "", "simulation.end_time", 3, "must be positive"},
   {"safety_zero", 3, "end_time = 1e-3\ntime_step_safety = 0", "", "simulation.time_step_safety", 4, "must be positive"},
   {"safety_above_one", 3, "end_time = 1e-3\ntime_step_safety = 1.5", "", "simulation.time_step_safety", 4, "(0, 1]"},
+  {"contact_safety_zero", 3, "end_time = 1e-3\ncontact_time_step_safety = 0", "", "simulation.contact_time_step_safety", 4, "must be positive"},
+  {"contact_safety_above_one", 3, "end_time = 1e-3\ncontact_time_step_safety = 1.2", "", "simulation.contact_time_step_safety", 4, "(0, 1]"},
   {"output_interval_zero", 3, "end_time = 1e-3\noutput_interval = 0.0", "", "simulation.output_interval", 4, "must be positive"},
   {"history_interval_negative", 3, "end_time = 1e-3\nhistory_interval = -1e-6", "", "simulation.history_interval", 4, "must be positive"},
   {"mass_scaling_negative", 3, "end_time = 1e-3\nmass_scaling_time_step = -1e-9", "", "simulation.mass_scaling_time_step", 4, "0 (off) or a positive"},
