@@ -32,7 +32,8 @@
 # SIZE "rough_base": one base for every aspect ratio: the r7soft column (a = 0.59) and the a = 0.8
 #   column of "aspect" on the base of rolling resistance 0.3 that meets eq. 61 at a = 3, then the
 #   r7soft column on that base with base friction 0.13 (against 0.5: the issue's basal-friction
-#   pair on the rough base), one thread each, about 1.5 h.
+#   pair on the rough base), one thread each, about 1.5 h; then the r7soft column on that base
+#   lifted twice as fast (0.26 m/s: the lift-speed check on the rough base).
 # ONLY (optional, a space-separated list): run only these names of the SIZE's list.
 set -uo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
@@ -127,16 +128,17 @@ case "$size" in
     soft=(--set materials.glass.youngs_modulus=0.25e6 --set simulation.deformation_damping.frequency=3000
       --set walls.base.rolling_resistance=0.3)
     sized=(--set packings.g.generate.radius=24.5e-3 --set tubes.tube.radius=24.5e-3)
+    r7=(--set packings.g.generate.count=573 --set "packings.g.cache=$out/packing_573.csv")
     run a0.8_r7_rough_base_0.3 "${soft[@]}" --set packings.g.generate.count=780 \
       --set "packings.g.cache=$out/packing_780.csv" --set simulation.end_time=1.5 \
       --set "$(lift 0.152)" &
-    (run soft_rough_base_0.3 "${soft[@]}" --set packings.g.generate.count=573 \
-      --set "packings.g.cache=$out/packing_573.csv" --set "$(lift 0.130)"
-      run soft_rough_base_0.3_friction_0.13 "${soft[@]}" --set packings.g.generate.count=573 \
-        --set "packings.g.cache=$out/packing_573.csv" --set "$(lift 0.130)" \
+    (run soft_rough_base_0.3 "${soft[@]}" "${r7[@]}" --set "$(lift 0.130)"
+      run soft_rough_base_0.3_friction_0.13 "${soft[@]}" "${r7[@]}" --set "$(lift 0.130)" \
         --set walls.base.friction=0.13) &
     wait
-    names="soft_rough_base_0.3 a0.8_r7_rough_base_0.3 soft_rough_base_0.3_friction_0.13" ;;
+    run soft_rough_base_0.3_fast_lift "${soft[@]}" "${r7[@]}" --set "$(lift 0.260)"
+    names="soft_rough_base_0.3 a0.8_r7_rough_base_0.3 soft_rough_base_0.3_friction_0.13
+      soft_rough_base_0.3_fast_lift" ;;
   *) echo "column_variants.sh: SIZE is small, r7, r7soft, aspect, scale or rough_base, not '$size'" >&2; exit 2 ;;
 esac
 for name in $names; do
