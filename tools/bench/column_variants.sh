@@ -24,8 +24,10 @@
 #   a pocket of a layer of glued grains of its size must lift its centre over its supports to
 #   roll out, a lever of 0.29 of its radius over the saddle of two close-packed supports and
 #   0.58 over one), and the column of 4 diameters on the base of 0.3.
-# SIZE "scale": the scale pair at a = 0.59 and E 0.25 MPa: the r7soft column (`soft`, 573 grains
-#   in a 24.5 mm tube) and the scene's 35 mm tube with 1,790 grains (the count that gives the
+# The modes small, r7, r7soft and aspect run on the smooth base (the grains' rolling resistance
+#   0.1, as the scene was when they were measured); scale and rough_base on the scene's rough one.
+# SIZE "scale": the scale pair at a = 0.59 and E 0.25 MPa on the scene's base: the r7soft column
+#   (573 grains in a 24.5 mm tube) and the scene's 35 mm tube with 1,790 grains (the count that gives the
 #   same a once settled at this modulus: the scene's 1,670 gave a = 0.565 at 1 MPa, and the
 #   softer grains settle 2.5 % lower), the lift at the scene's 0.155 m/s (sqrt(R_i) scaling from
 #   0.130 m/s), on 2 threads (about 1.2 h), then the r7 one on 1 thread.
@@ -39,6 +41,9 @@ set -uo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
 femdem="${1:-$root/build/femdem}" out="${2:-out/column_variants}" size="${3:-small}" only="${4:-}"
 mkdir -p "$out"
+# the base as the scene had it before it took the rough one (rolling resistance 0.3), for the
+# modes measured then: the grains' own 0.1
+smooth=(--set walls.base.rolling_resistance=0.1)
 lift() { echo "tubes.tube.velocity_history=[[0,0,0,0],[0.02,0,0,0],[0.022,0,0,$1]]"; }
 run() {  # name, options...
   local name=$1; shift
@@ -50,7 +55,7 @@ case "$size" in
   small)
     sized=(--set packings.g.generate.radius=10.5e-3 --set packings.g.generate.count=100
       --set "packings.g.cache=$out/packing_100.csv" --set tubes.tube.radius=10.5e-3
-      --set tubes.tube.height=40e-3)
+      --set tubes.tube.height=40e-3 "${smooth[@]}")
     soft=(--set materials.glass.youngs_modulus=0.1e6 --set simulation.deformation_damping.frequency=1900)
     run base "${soft[@]}" --set "$(lift 0.5)" &
     run stiff --set materials.glass.youngs_modulus=0.25e6 \
@@ -61,12 +66,13 @@ case "$size" in
     wait
     run base_friction_0.03 "${soft[@]}" --set "$(lift 0.5)" --set walls.base.friction=0.03 &
     run no_rolling_resistance --set "$(lift 0.5)" --set contact.rolling_resistance=0 \
+      --set walls.base.rolling_resistance=0 \
       --set simulation.end_time=0.41 &
     wait
     names="base stiff slow_lift base_friction_0.13 base_friction_0.03 no_rolling_resistance" ;;
   r7)
     sized=(--set packings.g.generate.radius=24.5e-3 --set packings.g.generate.count=573
-      --set "packings.g.cache=$out/packing_573.csv" --set tubes.tube.radius=24.5e-3)
+      --set "packings.g.cache=$out/packing_573.csv" --set tubes.tube.radius=24.5e-3 "${smooth[@]}")
     # the packing first, once, so that the runs share it
     "$femdem" check "$root/scenes/column_collapse.toml" "${sized[@]}" > /dev/null
     run base --set "$(lift 0.130)" &
@@ -82,7 +88,8 @@ case "$size" in
   r7soft)
     sized=(--set packings.g.generate.radius=24.5e-3 --set packings.g.generate.count=573
       --set "packings.g.cache=$out/packing_573.csv" --set tubes.tube.radius=24.5e-3
-      --set materials.glass.youngs_modulus=0.25e6 --set simulation.deformation_damping.frequency=3000)
+      --set materials.glass.youngs_modulus=0.25e6 --set simulation.deformation_damping.frequency=3000
+      "${smooth[@]}")
     "$femdem" check "$root/scenes/column_collapse.toml" "${sized[@]}" > /dev/null
     run soft_friction_0.13 --set "$(lift 0.130)" --set walls.base.friction=0.13 &
     run soft_friction_0.03 --set "$(lift 0.130)" --set walls.base.friction=0.03 &
@@ -100,7 +107,7 @@ case "$size" in
       echo --set packings.g.generate.radius=$1 --set packings.g.generate.count=$2 \
         --set "packings.g.cache=$out/packing_$2.csv" --set tubes.tube.radius=$1
     }
-    sized=()
+    sized=("${smooth[@]}")
     run a0.8_r7 "${soft[@]}" $(column 24.5e-3 780) --set "$(lift 0.152)" &
     (run a3_r3 "${soft[@]}" $(column 10.5e-3 250) --set "$(lift 0.26)"
       run a3_r4 "${soft[@]}" $(column 14e-3 505) --set "$(lift 0.30)"
