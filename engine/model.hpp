@@ -12,6 +12,7 @@
 #include "elements/tet10_mesh.hpp"
 #include "engine/element_update/element_states.hpp"
 #include "engine/model_spec.hpp"
+#include "engine/wall_bumps.hpp"
 #include "materials/finite_strain_update.hpp"
 
 namespace femdem {
@@ -57,6 +58,8 @@ struct Wall {
   double bound_min = 0.0, bound_max = 0.0;
   // how far behind its plane the wall reaches (WallSpec::thickness; infinite: a half-space)
   double thickness = HUGE_VAL;
+  // a studded wall (WallSpec::bump_diameter): hemispheres on its plane, moving with it
+  WallBumps bumps;
   bool force_driven() const { return !force_history.empty(); }
 
   // How a node at p is pushed out of the wall: by `depth` (> 0; <= 0: free) along `normal`.
@@ -66,12 +69,19 @@ struct Wall {
   // The penalty energy k depth^2 / 2 is then continuous where the faces meet, so an end that
   // slides past a node (a tube lifted off a column) neither cuts into it nor lets it go with a
   // jump, and a node behind the plate's back face (outside a tube) is pushed outwards.
+  // A studded wall (a half-space, never bounded or thin) pushes a node out of the plane or of
+  // the nearest bump, whichever it lies deeper in, the bump along the radius from its centre:
+  // the depth, and so the penalty energy, stays continuous.
   struct Push {
     double depth = 0.0;
     Vec3 normal = Vec3::UnitZ();
   };
   Push push(const Vec3& p) const {
     Push out{(point - p).dot(normal), normal};
+    if (bumps.present()) {
+      const WallBumps::Inside in = bumps.nearest(p, point, normal);
+      return in.depth > out.depth ? Push{in.depth, in.normal} : out;
+    }
     if (!(out.depth > 0.0)) return out;
     const double back = thickness - out.depth;
     if (back < out.depth) out = {back, -normal};
@@ -83,6 +93,9 @@ struct Wall {
     }
     return out;
   }
+  // How far in front of its plane the wall reaches (its bumps' height): a node further than
+  // this in front of the plane is free.
+  double relief() const { return bumps.radius; }
 };
 
 // Per boundary node of a body that can touch walls: its share of the surface area and the depth

@@ -347,6 +347,14 @@ Wall make_wall(const WallSpec& ws, const ContactSettings& contact) {
   w.bound_min = ws.bound_min;
   w.bound_max = ws.bound_max;
   w.thickness = ws.thickness;
+  if (ws.bump_diameter > 0.0) {
+    if (ws.bounded || std::isfinite(ws.thickness))
+      throw InputError("bumps are for a half-space wall, not a bounded or thin one", {}, 0, 0,
+                       "walls." + ws.name + ".bumps");
+    w.bumps.radius = 0.5 * ws.bump_diameter;
+    w.bumps.spacing = ws.bump_spacing;
+    w.bumps.orient(w.normal);
+  }
   return w;
 }
 

@@ -147,6 +147,11 @@ struct WallSpec {
   // A thin wall (a tube's side): it acts only on nodes less than `thickness` behind its plane;
   // what lies further behind is on its other side. Infinite: a half-space, as a floor is.
   double thickness = std::numeric_limits<double>::infinity();
+  // > 0: a studded wall (engine/wall_bumps.hpp): hemispheres of this diameter centred on the
+  // plane at the nodes of a hexagonal lattice of spacing `bump_spacing`, the rough plane of glued
+  // beads. Only on a half-space wall (not bounded, not thin).
+  double bump_diameter = 0.0;
+  double bump_spacing = 0.0;
 };
 
 // Region of a body's reference configuration whose nodes a constraint acts on.

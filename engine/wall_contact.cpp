@@ -13,7 +13,7 @@ namespace {
 // The spring of a node near a wall (within the depth of the element behind it: it may touch
 // within the step), or 0 when it is farther.
 double near_wall_stiffness(const Model& m, const SurfaceNode& s, const Vec3& p, const Wall& w) {
-  if ((p - w.point).dot(w.normal) > s.depth) return 0.0;
+  if ((p - w.point).dot(w.normal) - w.relief() > s.depth) return 0.0;
   return wall_modulus(m, w, s.body) * s.area / s.depth;
 }
 
@@ -84,7 +84,7 @@ void WallContact::build_near(const Model& m) {
     const Vec3& p = tracked_positions_[q];
     for (std::size_t wi = 0; wi < m.walls.size(); ++wi) {
       const Wall& w = m.walls[wi];
-      if ((p - w.point).dot(w.normal) > s.depth + reach_buffer_) continue;
+      if ((p - w.point).dot(w.normal) - w.relief() > s.depth + reach_buffer_) continue;
       near_.push_back({tracked_[q], static_cast<std::uint32_t>(wi),
                        wall_modulus(m, w, s.body) * s.area / s.depth});
     }

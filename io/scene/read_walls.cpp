@@ -94,9 +94,10 @@ void Reader::read_walls(const toml::table& root, ModelSpec& spec, toml::array& o
   for (const auto& [tp, p] : entries(root, "walls")) {
     const toml::table& t = *tp;
     ++index;
-    check_keys(t, p,
-               {"name", "point", "normal", "velocity", "velocity_history", "friction",
-                "rolling_resistance", "penalty_factor", "damping", "force_history", "mass"});
+    check_keys(
+        t, p,
+        {"name", "point", "normal", "velocity", "velocity_history", "friction",
+         "rolling_resistance", "penalty_factor", "damping", "force_history", "mass", "bumps"});
     WallSpec w;
     w.name = entry_name(t, p, names, "wall", "wall" + std::to_string(index));
     w.point = opt_vec3(t, "point", p).value_or(Vec3::Zero());
@@ -156,6 +157,18 @@ void Reader::read_walls(const toml::table& root, ModelSpec& spec, toml::array& o
                  format_number(w.rolling_resistance));
     }
     if (const auto pf = opt_penalty_factor(t, p)) w.penalty_factor = *pf > 0.0 ? *pf : -1.0;
+    if (const toml::node* bn = t.get("bumps")) {
+      const std::string bp = dotted(p, "bumps");
+      const toml::table* b = bn->as_table();
+      if (!b)
+        fail(bn, bp,
+             "expected a table { diameter = D, spacing = S } (hemispheres of diameter D on a "
+             "hexagonal lattice of spacing S, S = D when absent), got " +
+                 type_name(*bn));
+      check_keys(*b, bp, {"diameter", "spacing"});
+      w.bump_diameter = positive(*b, "diameter", bp, std::nullopt, bn);
+      w.bump_spacing = positive(*b, "spacing", bp, w.bump_diameter, bn);
+    }
     toml::table o;
     o.insert_or_assign("name", w.name);
     o.insert_or_assign("point", toml::array{w.point.x(), w.point.y(), w.point.z()});
@@ -169,6 +182,9 @@ void Reader::read_walls(const toml::table& root, ModelSpec& spec, toml::array& o
     if (w.rolling_resistance >= 0.0) o.insert_or_assign("rolling_resistance", w.rolling_resistance);
     if (w.penalty_factor > 0.0) o.insert_or_assign("penalty_factor", w.penalty_factor);
     if (w.penalty_factor < 0.0) o.insert_or_assign("penalty_factor", "auto");
+    if (w.bump_diameter > 0.0)
+      o.insert_or_assign("bumps",
+                         toml::table{{"diameter", w.bump_diameter}, {"spacing", w.bump_spacing}});
     w.damping = number(t, "damping", p, 0.0, &t);
     if (w.damping < 0.0 || w.damping > 1.0)
       fail(t.get("damping"), dotted(p, "damping"),

@@ -148,6 +148,11 @@ void print_scene_summary(const SceneFile& scene) {
         else
           fmt::print("    acts only up to {:g} m along {}\n", w.bound_max, vec(w.bound_axis));
       }
+      if (w.bump_diameter > 0.0)
+        fmt::print(
+            "    studded: hemispheres of diameter {:g} m centred on the plane, on a hexagonal "
+            "lattice of spacing {:g} m; they reach {:g} m in front of it\n",
+            w.bump_diameter, w.bump_spacing, 0.5 * w.bump_diameter);
       if (std::isfinite(w.thickness))
         fmt::print(
             "    a plate {:g} m thick: a node further behind than half of it is pushed "

@@ -32,6 +32,10 @@ const std::vector<BadCase> kBadCases = {
   {"zero_wall_normal", 16, "normal = [0, 0, 0]", "", "walls.floor.normal", 16, "zero vector"},
   {"negative_wall_friction", 16, "normal = [0, 0, 1]\nfriction = -0.1", "", "walls.floor.friction", 17, "must not be negative"},
   {"wall_rolling_resistance_above_one", 16, "normal = [0, 0, 1]\nrolling_resistance = 1.5", "", "walls.floor.rolling_resistance", 17, "coefficient in [0, 1]"},
+  {"wall_bumps_not_a_table", 16, "normal = [0, 0, 1]\nbumps = 3e-3", "", "walls.floor.bumps", 17, "expected a table { diameter = D"},
+  {"wall_bumps_without_diameter", 16, "normal = [0, 0, 1]\nbumps = { spacing = 3e-3 }", "", "walls.floor.bumps.diameter", 17, "required value is missing"},
+  {"wall_bumps_negative_spacing", 16, "normal = [0, 0, 1]\nbumps = { diameter = 3e-3, spacing = -1e-3 }", "", "walls.floor.bumps.spacing", 17, "must be positive"},
+  {"wall_bumps_unknown_key", 16, "normal = [0, 0, 1]\nbumps = { diameter = 3e-3, arrangement = \"square\" }", "", "walls.floor.bumps.arrangement", 17, "unknown key 'arrangement'"},
   {"wall_rolling_resistance_negative", 16, "normal = [0, 0, 1]\nrolling_resistance = -0.1", "", "walls.floor.rolling_resistance", 17, "got -0.1"},
   {"zero_wall_penalty", 16, "normal = [0, 0, 1]\npenalty_factor = 0", "", "walls.floor.penalty_factor", 17, "must be positive"},
   {"wall_history_and_velocity", 16, "normal = [0, 0, 1]\nvelocity = [0, 0, 1]\nvelocity_history = [[0, 0, 0, 0]]", "", "walls.floor.velocity_history", 18, "not both"},
@@ -94,7 +98,10 @@ friction = 0.3
       "[[walls]]\nname = \"roof\"\npoint = [0, 0, 1]\nnormal = [0, 0, -3]\nfriction = 0.2\n"
       "penalty_factor = 10\nvelocity = [0, 0, -1]\n";
   // a wall on the automatic stiffness while [contact] sets a factor
-  text += "[[walls]]\nname = \"side\"\nnormal = [1, 0, 0]\npenalty_factor = \"auto\"\n";
+  // ... and studded with bumps, their spacing the diameter unless given
+  text +=
+      "[[walls]]\nname = \"side\"\nnormal = [1, 0, 0]\npenalty_factor = \"auto\"\n"
+      "bumps = { diameter = 2e-3 }\n";
   const femdem::SceneFile s = load_scene(write_file(tmp_dir() / "explicit.toml", text));
   const auto& m = s.model;
   EXPECT_EQ(m.title, "base");
@@ -109,6 +116,11 @@ friction = 0.3
   ASSERT_EQ(m.walls.size(), 3u);
   EXPECT_LT(m.walls[2].penalty_factor, 0.0);  // "auto", kept apart from "absent"
   EXPECT_NE(s.resolved_toml.find("penalty_factor = \"auto\""), std::string::npos);
+  EXPECT_DOUBLE_EQ(m.walls[2].bump_diameter, 2e-3);
+  EXPECT_DOUBLE_EQ(m.walls[2].bump_spacing, 2e-3);
+  EXPECT_EQ(m.walls[1].bump_diameter, 0.0);  // a flat wall
+  EXPECT_NE(s.resolved_toml.find("bumps = { diameter = 0.002, spacing = 0.002 }"),
+            std::string::npos);
   EXPECT_EQ(m.walls[1].normal, Vec3(0, 0, -1));
   EXPECT_DOUBLE_EQ(m.walls[1].penalty_factor, 10.0);
   EXPECT_DOUBLE_EQ(m.walls[1].friction, 0.2);
