@@ -135,6 +135,14 @@ void NbsBroadphase::find_pairs(std::span<const Aabb> boxes, std::span<const std:
     }
   }
   cell_start_.push_back(static_cast<std::uint32_t>(n));
+  // The end of each box's run of one group within its cell: a cell inside a body holds mostly
+  // that body's boxes, and the sweep steps over such a run at once instead of testing each box
+  // of it only to reject it (the pairs found, and their order, are the same).
+  run_end_.resize(n);
+  for (std::size_t s = n; s-- > 0;)
+    run_end_[s] = s + 1 < n && key_[s + 1] == key_[s] && sorted_group_[s + 1] == sorted_group_[s]
+                      ? run_end_[s + 1]
+                      : static_cast<std::uint32_t>(s + 1);
 
   sweep_cells();
   order_pairs(n, out_pairs);
@@ -176,6 +184,7 @@ void NbsBroadphase::sweep_cells() {
   const Aabb* box = sorted_box_.data();
   const std::int32_t* group = sorted_group_.data();
   const std::uint32_t* index = index_.data();
+  const std::uint32_t* run_end = run_end_.data();
   std::size_t tests = 0;
 
   auto emit = [&](std::uint32_t s, std::uint32_t t) {
@@ -186,12 +195,17 @@ void NbsBroadphase::sweep_cells() {
   auto cross = [&](std::size_t p, std::size_t q) {
     const std::uint32_t p0 = cell_start_[p], p1 = cell_start_[p + 1];
     const std::uint32_t q0 = cell_start_[q], q1 = cell_start_[q + 1];
-    tests += std::size_t{p1 - p0} * (q1 - q0);
     for (std::uint32_t s = p0; s < p1; ++s) {
       const Aabb& bs = box[s];
       const std::int32_t gs = group[s];
-      for (std::uint32_t t = q0; t < q1; ++t)
-        if (group[t] != gs && boxes_overlap(bs, box[t])) emit(s, t);
+      for (std::uint32_t t = q0; t < q1; ++t) {
+        if (group[t] == gs) {
+          t = run_end[t] - 1;  // the rest of this body's run in the cell
+          continue;
+        }
+        ++tests;
+        if (boxes_overlap(bs, box[t])) emit(s, t);
+      }
     }
   };
 
@@ -200,12 +214,17 @@ void NbsBroadphase::sweep_cells() {
     const std::uint64_t key = cell_key_[p];
     // Own cell.
     const std::uint32_t p0 = cell_start_[p], p1 = cell_start_[p + 1];
-    tests += std::size_t{p1 - p0} * (p1 - p0 - 1) / 2;
     for (std::uint32_t s = p0; s < p1; ++s) {
       const Aabb& bs = box[s];
       const std::int32_t gs = group[s];
-      for (std::uint32_t t = s + 1; t < p1; ++t)
-        if (group[t] != gs && boxes_overlap(bs, box[t])) emit(s, t);
+      for (std::uint32_t t = run_end[s]; t < p1; ++t) {
+        if (group[t] == gs) {
+          t = run_end[t] - 1;
+          continue;
+        }
+        ++tests;
+        if (boxes_overlap(bs, box[t])) emit(s, t);
+      }
     }
     // (x+1, y, z): the next occupied cell if its key is one more.
     if (p + 1 < cells && cell_key_[p + 1] == key + 1) cross(p, p + 1);
@@ -247,7 +266,8 @@ void NbsBroadphase::order_pairs(std::size_t n, std::vector<CandidatePair>& out_p
 
 std::size_t NbsBroadphase::memory_bytes() const {
   return (key_.capacity() + key_tmp_.capacity() + cell_key_.capacity()) * sizeof(std::uint64_t) +
-         (index_.capacity() + index_tmp_.capacity() + cell_start_.capacity() + count_.capacity()) *
+         (index_.capacity() + index_tmp_.capacity() + cell_start_.capacity() + count_.capacity() +
+          run_end_.capacity()) *
              sizeof(std::uint32_t) +
          sorted_box_.capacity() * sizeof(Aabb) + sorted_group_.capacity() * sizeof(std::int32_t) +
          found_.capacity() * sizeof(CandidatePair);

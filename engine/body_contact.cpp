@@ -118,6 +118,8 @@ void BodyContact::update_candidates(const Model& m) {
   if (!dist_) present_ = held_;
   boxes_.resize(present_.size());
   groups_.resize(present_.size());
+  const std::size_t nb = m.bodies.size();
+  body_boxes_.assign(nb, Aabb{{HUGE_VAL, HUGE_VAL, HUGE_VAL}, {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}});
   for (std::size_t q = 0; q < present_.size(); ++q) {
     const std::uint32_t t = present_[q];
     Aabb& b = boxes_[q];
@@ -129,8 +131,14 @@ void BodyContact::update_candidates(const Model& m) {
         b.hi[k] = std::max(b.hi[k], c[k] + margin);
       }
     groups_[q] = tet_body_[t];
+    Aabb& body = body_boxes_[static_cast<std::size_t>(tet_body_[t])];
+    for (int k = 0; k < 3; ++k) {
+      body.lo[k] = std::min(body.lo[k], b.lo[k]);
+      body.hi[k] = std::max(body.hi[k], b.hi[k]);
+    }
   }
-  broadphase_.find_pairs(boxes_, groups_, found_);
+  keep_near_other_bodies(m);
+  broadphase_.find_pairs(near_boxes_, near_groups_, found_);
   ++broadphase_runs_;
   verlet_.record(node_positions_);
 
@@ -141,7 +149,7 @@ void BodyContact::update_candidates(const Model& m) {
   std::size_t o = 0;
   const double buffer = verlet_.buffer();
   for (const CandidatePair& found : found_) {
-    const CandidatePair c{present_[found.i], present_[found.j]};
+    const CandidatePair c{present_[near_[found.i]], present_[near_[found.j]]};
     if (!mine_[c.i] && !mine_[c.j]) continue;  // (a rank's: no node of it is owned here)
     const int ba = tet_body_[c.i], bb = tet_body_[c.j];
     if (m.bodies[ba].fixed && m.bodies[bb].fixed) continue;
@@ -182,6 +190,55 @@ void BodyContact::update_candidates(const Model& m) {
   // A pair that drops out of the list is far apart: its spring was released when it stopped
   // touching (evaluate() zeroes it then), so nothing is lost here.
   list_pair_tets();
+}
+
+void BodyContact::keep_near_other_bodies(const Model& m) {
+  // Body boxes first: the pairs of bodies whose boxes (the union of their sub-tets' margin boxes)
+  // meet, two fixed bodies excepted, as each body's list of partners.
+  // (bodies with no sub-tet present have no box and no partner)
+  const std::size_t nb = m.bodies.size();
+  boxed_bodies_.clear();
+  boxed_boxes_.clear();
+  for (std::size_t b = 0; b < nb; ++b)
+    if (body_boxes_[b].lo[0] <= body_boxes_[b].hi[0]) {
+      boxed_bodies_.push_back(static_cast<std::int32_t>(b));
+      boxed_boxes_.push_back(body_boxes_[b]);
+    }
+  body_broadphase_.find_pairs(boxed_boxes_, boxed_bodies_, body_pairs_);
+  auto pairs_up = [&](const CandidatePair& p) {
+    return !(m.bodies[static_cast<std::size_t>(boxed_bodies_[p.i])].fixed &&
+             m.bodies[static_cast<std::size_t>(boxed_bodies_[p.j])].fixed);
+  };
+  partner_offset_.assign(nb + 1, 0);
+  for (const CandidatePair& p : body_pairs_)
+    if (pairs_up(p))
+      ++partner_offset_[boxed_bodies_[p.i] + 1], ++partner_offset_[boxed_bodies_[p.j] + 1];
+  for (std::size_t b = 0; b < nb; ++b) partner_offset_[b + 1] += partner_offset_[b];
+  partners_.resize(partner_offset_[nb]);
+  partner_fill_.assign(partner_offset_.begin(), partner_offset_.end() - 1);
+  for (const CandidatePair& p : body_pairs_)
+    if (pairs_up(p)) {
+      const std::int32_t a = boxed_bodies_[p.i], b = boxed_bodies_[p.j];
+      partners_[partner_fill_[static_cast<std::size_t>(a)]++] = b;
+      partners_[partner_fill_[static_cast<std::size_t>(b)]++] = a;
+    }
+  // Then the sub-tets whose box meets a partner's box. Two sub-tet boxes of different bodies
+  // that overlap each lie in their own body's box, so each meets the other's body box: the
+  // broadphase finds the same pairs among these, and in the same order (near_ keeps present_'s
+  // ascending order). Left out: a body's far side, and fixed bodies away from moving ones.
+  near_.clear();
+  near_boxes_.clear();
+  near_groups_.clear();
+  for (std::size_t q = 0; q < present_.size(); ++q) {
+    const auto body = static_cast<std::size_t>(groups_[q]);
+    for (std::uint32_t k = partner_offset_[body]; k < partner_offset_[body + 1]; ++k)
+      if (boxes_overlap(boxes_[q], body_boxes_[static_cast<std::size_t>(partners_[k])])) {
+        near_.push_back(static_cast<std::uint32_t>(q));
+        near_boxes_.push_back(boxes_[q]);
+        near_groups_.push_back(groups_[q]);
+        break;
+      }
+  }
 }
 
 void BodyContact::list_pair_tets() {

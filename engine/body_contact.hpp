@@ -143,6 +143,9 @@ class BodyContact final : public ContactModel {
 
   void update_candidates(const Model& m);
   // The sub-tets of the listed pairs (active_tets_) and the pairs' slots for the next step.
+  // Keeps, of the present sub-tets, those whose margin box meets the box of another body they
+  // may touch (near_, near_boxes_, near_groups_).
+  void keep_near_other_bodies(const Model& m);
   void list_pair_tets();
   // The corners and boxes of the sub-tets listed.
   void update_tet_boxes(const Model& m, const std::vector<std::uint32_t>& tets);
@@ -191,6 +194,19 @@ class BodyContact final : public ContactModel {
   std::vector<std::uint8_t> is_present_;
   std::vector<Aabb> boxes_;
   std::vector<std::int32_t> groups_;
+  // Body-level boxes first (keep_near_other_bodies): each body's box, the bodies whose boxes meet
+  // it (CSR), and the positions in present_ of the sub-tets near a partner, which alone go to
+  // the sub-tet broadphase, with their boxes and bodies.
+  NbsBroadphase body_broadphase_;
+  std::vector<Aabb> body_boxes_;
+  std::vector<std::int32_t> boxed_bodies_;  // the bodies with a box, ascending
+  std::vector<Aabb> boxed_boxes_;
+  std::vector<CandidatePair> body_pairs_;
+  std::vector<std::uint32_t> partner_offset_, partner_fill_;
+  std::vector<std::int32_t> partners_;
+  std::vector<std::uint32_t> near_;
+  std::vector<Aabb> near_boxes_;
+  std::vector<std::int32_t> near_groups_;
   // Foreign nodes (distributed runs): global ids ascending, positions and velocities (3 each),
   // the lists they come by, and the whole model's contact sub-tets around each global node.
   std::vector<std::int32_t> foreign_nodes_;
