@@ -10,8 +10,13 @@
 // turns the ball out over that edge once tan(theta) > 0.289 / 0.816, theta > 19.5 deg, with no
 // help from friction; on a flat plane it rolls down any slope. So with wall friction 0.13
 // (a friction angle of 7.4 deg):
-// - at 18 deg the ball stays in its pocket: it rolls onto the two downhill bumps (measured
-//   1.0 mm) and stays there (still for the last 0.2 s of 0.4 s);
+// - at 18 deg the ball stays in its pocket: it may roll onto the two downhill bumps (measured
+//   0.95-1.05 mm with the wall's damping or friction or the step changed by 5 %, 0.02 mm with
+//   the bumps 0.05 % larger; 1.14 mm in the sanitizer build, whose element update rounds
+//   differently) and stops there: in the last
+//   0.1 s of 0.4 s it moves less than 0.1 mm, 1 % of its radius (measured 0.2 um here, at most
+//   63 um in the sanitizer build, where its slide onto the bumps ends later; out of the pocket
+//   at 21 deg it covers 24 mm in that time);
 // - at 21 deg it leaves it over the edge within 0.4 s (at least a pocket's row, 1.15 R, down
 //   the slope). Measured with this meshed ball: held at 19 deg, out at 20 (16 mm by 0.3 s);
 // - on a flat wall at 12 deg it rolls away (5/7 g sin(theta) t^2 / 2 = 16 mm in 0.15 s for a
@@ -31,7 +36,7 @@ constexpr double kR = 0.01, kPi = 3.14159265358979323846;
 
 struct Slope {
   double dy = 0.0, dx = 0.0;  // the ball's centre's travel down (-y) and across the slope
-  double dy_half = 0.0;       // its travel down the slope by half the run's time
+  double dy_late = 0.0;       // its travel down the slope over the run's last quarter
   double worst_balance = 0.0;
 };
 
@@ -75,14 +80,14 @@ damping = 0.2
   s.dy = y.back() - y.front();
   s.dx = x.back() - x.front();
   const auto& t = run.history.at("time");
-  const auto half = std::lower_bound(t.begin(), t.end(), 0.5 * end_time) - t.begin();
-  s.dy_half = y[static_cast<std::size_t>(half)] - y.front();
+  const auto late = std::lower_bound(t.begin(), t.end(), 0.75 * end_time) - t.begin();
+  s.dy_late = y.back() - y[static_cast<std::size_t>(late)];
   for (const double e : run.history.at("energy_balance_error"))
     s.worst_balance = std::max(s.worst_balance, std::fabs(e));
   std::printf(
-      "%s: %.0f deg, studded %d: the ball moved %.3f mm down the slope (%.3f mm by %g s), "
+      "%s: %.0f deg, studded %d: the ball moved %.3f mm down the slope (%.4f mm after %g s), "
       "%.3f mm across; energy balance within %.2e\n",
-      name.c_str(), degrees, studded, -1e3 * s.dy, -1e3 * s.dy_half, 0.5 * end_time, 1e3 * s.dx,
+      name.c_str(), degrees, studded, -1e3 * s.dy, -1e3 * s.dy_late, 0.75 * end_time, 1e3 * s.dx,
       s.worst_balance);
   return s;
 }
@@ -93,7 +98,7 @@ TEST(StuddedWall, APocketHoldsABallOnASlopeBelowItsTippingAngleWhateverTheFricti
   const Slope held = ball_on_slope("held_18deg", 18.0, true, 0.4);
   const Slope rolls = ball_on_slope("flat_12deg", 12.0, false, 0.15);
   EXPECT_LT(std::fabs(held.dy), 2e-3);
-  EXPECT_LT(std::fabs(held.dy - held.dy_half), 5e-5);
+  EXPECT_LT(std::fabs(held.dy_late), 1e-4);
   EXPECT_LT(std::fabs(held.dx), 1e-4);
   EXPECT_LT(rolls.dy, -5e-3);
   for (const Slope* s : {&held, &rolls}) EXPECT_LT(s->worst_balance, 0.01);
