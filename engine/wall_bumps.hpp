@@ -14,6 +14,7 @@
 #include <cmath>
 
 #include "elements/tet10_mesh.hpp"
+#include "engine/plane_axis.hpp"
 
 namespace femdem {
 
@@ -24,14 +25,9 @@ struct WallBumps {
 
   bool present() const { return radius > 0.0; }
 
-  // Lattice axes for a wall of unit normal n: u along the coordinate axis least aligned with n,
-  // projected into the plane (x for a floor), v = n x u.
+  // Lattice axes for a wall of unit normal n: u = in_plane_axis(n) (x for a floor), v = n x u.
   void orient(const Vec3& n) {
-    const Vec3 a = n.cwiseAbs();
-    const Vec3 e = a.x() <= a.y() && a.x() <= a.z() ? Vec3::UnitX()
-                   : a.y() <= a.z()                 ? Vec3::UnitY()
-                                                    : Vec3::UnitZ();
-    u = (e - e.dot(n) * n).normalized();
+    u = in_plane_axis(n);
     v = n.cross(u);
   }
 

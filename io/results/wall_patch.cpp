@@ -4,22 +4,16 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/plane_axis.hpp"
+
 namespace femdem {
 
 std::array<Vec3, 4> wall_patch(const Wall& wall, const Vec3& lo, const Vec3& hi) {
   const Vec3 n = wall.normal.normalized();
-  // in-plane axes: a bounded wall's axis (projected on the plane) first, else the coordinate
-  // axis least aligned with the normal
-  Vec3 t1;
-  if (wall.bounded) {
-    t1 = wall.bound_axis - wall.bound_axis.dot(n) * n;
-  } else {
-    int k = 0;
-    for (int i = 1; i < 3; ++i)
-      if (std::abs(n[i]) < std::abs(n[k])) k = i;
-    t1 = Vec3::Unit(k) - n[k] * n;
-  }
-  t1.normalize();
+  // in-plane axes: a bounded wall's axis (projected on the plane) first, else the one a studded
+  // wall lays its lattice along
+  const Vec3 t1 = wall.bounded ? Vec3((wall.bound_axis - wall.bound_axis.dot(n) * n).normalized())
+                               : in_plane_axis(n);
   const Vec3 t2 = n.cross(t1);
   const double grow = 0.1 * (hi - lo).norm();
   const Vec3 g = Vec3::Constant(grow);
