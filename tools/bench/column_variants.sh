@@ -25,8 +25,9 @@
 #   roll out, a lever of 0.29 of its radius over the saddle of two close-packed supports and
 #   0.58 over one), and the column of 4 diameters on the base of 0.3.
 # The modes small, r7, r7soft and aspect run on the smooth base (the grains' rolling resistance
-#   0.1, as the scene was when they were measured); scale and rough_base on the scene's rough one.
-# SIZE "scale": the scale pair at a = 0.59 and E 0.25 MPa on the scene's base: the r7soft column
+#   0.1, as the scene was when they were measured); scale and rough_base on the coefficient base
+#   (0.3), the scene's before it took the studded one; studded_base and studded_checks on that.
+# SIZE "scale": the scale pair at a = 0.59 and E 0.25 MPa on the coefficient base: the r7soft column
 #   (573 grains in a 24.5 mm tube) and the scene's 35 mm tube with 1,790 grains (the count that gives the
 #   same a once settled at this modulus: the scene's 1,670 gave a = 0.565 at 1 MPa, and the
 #   softer grains settle 2.5 % lower), the lift at the scene's 0.155 m/s (sqrt(R_i) scaling from
@@ -42,23 +43,36 @@
 #   stands, and the tube with it), with the grains' own rolling resistance (0.1) on it: the r7soft
 #   column with base friction 0.5 and 0.13 side by side (the issue's basal-friction pair), then
 #   base friction 0.03 beside the a = 3 column of 3 grain diameters on it.
+# SIZE "studded_checks": on that studded base, the checks measured on the coefficient base: the
+#   a = 0.8 column of "aspect" (780 grains, lift 0.152 m/s, about 1.5 h) beside the r7soft column
+#   of base friction 0.5 (studded_0.5 again, the reference) and then the same lifted twice as
+#   fast (0.26 m/s: the lift-speed check).
 # ONLY (optional, a space-separated list): run only these names of the SIZE's list.
 set -uo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
 femdem="${1:-$root/build/femdem}" out="${2:-out/column_variants}" size="${3:-small}" only="${4:-}"
-mkdir -p "$out"
-# the base as the scene had it before it took the rough one (rolling resistance 0.3), for the
-# modes measured then: the grains' own 0.1
-smooth=(--set walls.base.rolling_resistance=0.1)
+mkdir -p "$out" && out="$(cd "$out" && pwd)"
+# The scene as shipped (its studded base) for the modes studded_base and studded_checks; the
+# modes measured before it had that base run on a copy without its bumps, the plane and the tube
+# back at z = 0: the smooth base (the grains' rolling resistance, 0.1: small, r7, r7soft,
+# aspect) or the coefficient base (0.3: scale, rough_base), as the scene was when they were
+# measured, so that their documented tables still reproduce.
+scene="$root/scenes/column_collapse.toml"
+flat_scene="$out/column_collapse_flat_base.toml"
+grep -v '^bumps = ' "$scene" > "$flat_scene"
+flat=(--set "walls.base.point=[0,0,0]" --set "tubes.tube.centre=[0,0,0]")
+smooth=("${flat[@]}" --set walls.base.rolling_resistance=0.1)
+coefficient=("${flat[@]}" --set walls.base.rolling_resistance=0.3)
 lift() { echo "tubes.tube.velocity_history=[[0,0,0,0],[0.02,0,0,0],[0.022,0,0,$1]]"; }
 run() {  # name, options...
   local name=$1; shift
   if [[ -n "$only" && " $only " != *" $name "* ]]; then return; fi
-  OMP_NUM_THREADS=1 /usr/bin/time -f "$name: user %U s" "$femdem" run "$root/scenes/column_collapse.toml" \
+  OMP_NUM_THREADS=1 /usr/bin/time -f "$name: user %U s" "$femdem" run "$scene" \
     "${sized[@]}" "$@" --out "$out/$name" --force --threads 1 --quiet --no-plot 2>&1 | tail -1
 }
 case "$size" in
   small)
+    scene=$flat_scene
     sized=(--set packings.g.generate.radius=10.5e-3 --set packings.g.generate.count=100
       --set "packings.g.cache=$out/packing_100.csv" --set tubes.tube.radius=10.5e-3
       --set tubes.tube.height=40e-3 "${smooth[@]}")
@@ -77,10 +91,11 @@ case "$size" in
     wait
     names="base stiff slow_lift base_friction_0.13 base_friction_0.03 no_rolling_resistance" ;;
   r7)
+    scene=$flat_scene
     sized=(--set packings.g.generate.radius=24.5e-3 --set packings.g.generate.count=573
       --set "packings.g.cache=$out/packing_573.csv" --set tubes.tube.radius=24.5e-3 "${smooth[@]}")
     # the packing first, once, so that the runs share it
-    "$femdem" check "$root/scenes/column_collapse.toml" "${sized[@]}" > /dev/null
+    "$femdem" check "$scene" "${sized[@]}" > /dev/null
     run base --set "$(lift 0.130)" &
     run soft --set materials.glass.youngs_modulus=0.25e6 \
       --set simulation.deformation_damping.frequency=3000 --set "$(lift 0.130)" &
@@ -92,11 +107,12 @@ case "$size" in
     wait
     names="base soft fast_lift base_friction_0.13 base_friction_0.03" ;;
   r7soft)
+    scene=$flat_scene
     sized=(--set packings.g.generate.radius=24.5e-3 --set packings.g.generate.count=573
       --set "packings.g.cache=$out/packing_573.csv" --set tubes.tube.radius=24.5e-3
       --set materials.glass.youngs_modulus=0.25e6 --set simulation.deformation_damping.frequency=3000
       "${smooth[@]}")
-    "$femdem" check "$root/scenes/column_collapse.toml" "${sized[@]}" > /dev/null
+    "$femdem" check "$scene" "${sized[@]}" > /dev/null
     run soft_friction_0.13 --set "$(lift 0.130)" --set walls.base.friction=0.13 &
     run soft_friction_0.03 --set "$(lift 0.130)" --set walls.base.friction=0.03 &
     wait
@@ -107,6 +123,7 @@ case "$size" in
     wait
     names="soft soft_fast_lift soft_friction_0.13 soft_friction_0.33 soft_friction_0.03" ;;
   aspect)
+    scene=$flat_scene
     soft=(--set materials.glass.youngs_modulus=0.25e6 --set simulation.deformation_damping.frequency=3000
       --set simulation.end_time=1.5)
     column() {  # radius count
@@ -126,20 +143,24 @@ case "$size" in
     wait
     names="a0.8_r7 a3_r3 a3_r4 a3_r3_rough_base_0.5 a3_r3_rough_base_0.3 a3_r4_rough_base_0.3" ;;
   scale)
+    scene=$flat_scene
     soft=(--set materials.glass.youngs_modulus=0.25e6 --set simulation.deformation_damping.frequency=3000)
-    sized=(--set packings.g.generate.count=1790 --set "packings.g.cache=$out/packing_1790.csv")
+    sized=(--set packings.g.generate.count=1790 --set "packings.g.cache=$out/packing_1790.csv"
+      "${coefficient[@]}")
     if [[ -z "$only" || " $only " == *" full "* ]]; then
-      "$femdem" check "$root/scenes/column_collapse.toml" "${sized[@]}" > /dev/null
-      OMP_NUM_THREADS=2 /usr/bin/time -f "full: user %U s" "$femdem" run "$root/scenes/column_collapse.toml" \
+      "$femdem" check "$scene" "${sized[@]}" > /dev/null
+      OMP_NUM_THREADS=2 /usr/bin/time -f "full: user %U s" "$femdem" run "$scene" \
         "${sized[@]}" "${soft[@]}" --out "$out/full" --force --threads 2 --quiet --no-plot 2>&1 | tail -1
     fi
     sized=(--set packings.g.generate.radius=24.5e-3 --set packings.g.generate.count=573
-      --set "packings.g.cache=$out/packing_573.csv" --set tubes.tube.radius=24.5e-3)
+      --set "packings.g.cache=$out/packing_573.csv" --set tubes.tube.radius=24.5e-3
+      "${coefficient[@]}")
     run r7 "${soft[@]}" --set "$(lift 0.130)"
     names="full r7" ;;
   rough_base)
+    scene=$flat_scene
     soft=(--set materials.glass.youngs_modulus=0.25e6 --set simulation.deformation_damping.frequency=3000
-      --set walls.base.rolling_resistance=0.3)
+      "${coefficient[@]}")
     sized=(--set packings.g.generate.radius=24.5e-3 --set tubes.tube.radius=24.5e-3)
     r7=(--set packings.g.generate.count=573 --set "packings.g.cache=$out/packing_573.csv")
     run a0.8_r7_rough_base_0.3 "${soft[@]}" --set packings.g.generate.count=780 \
@@ -170,7 +191,20 @@ case "$size" in
       --set "$(lift 0.26)" &
     wait
     names="studded_0.5 studded_friction_0.13 studded_friction_0.03 a3_r3_studded" ;;
-  *) echo "column_variants.sh: SIZE is small, r7, r7soft, aspect, scale, rough_base or studded_base, not '$size'" >&2; exit 2 ;;
+  studded_checks)
+    soft=(--set materials.glass.youngs_modulus=0.25e6 --set simulation.deformation_damping.frequency=3000)
+    studded=(--set "walls.base.bumps={diameter=3.5e-3}" --set "walls.base.point=[0,0,-1.75e-3]"
+      --set walls.base.rolling_resistance=0.1 --set "tubes.tube.centre=[0,0,-1.75e-3]")
+    sized=(--set packings.g.generate.radius=24.5e-3 --set tubes.tube.radius=24.5e-3)
+    r7=(--set packings.g.generate.count=573 --set "packings.g.cache=$out/packing_573.csv")
+    run a0.8_r7_studded "${soft[@]}" "${studded[@]}" --set packings.g.generate.count=780 \
+      --set "packings.g.cache=$out/packing_780.csv" --set simulation.end_time=1.5 \
+      --set "$(lift 0.152)" &
+    (run studded_0.5 "${soft[@]}" "${studded[@]}" "${r7[@]}" --set "$(lift 0.130)"
+      run studded_fast_lift "${soft[@]}" "${studded[@]}" "${r7[@]}" --set "$(lift 0.260)") &
+    wait
+    names="a0.8_r7_studded studded_0.5 studded_fast_lift" ;;
+  *) echo "column_variants.sh: SIZE is small, r7, r7soft, aspect, scale, rough_base, studded_base or studded_checks, not '$size'" >&2; exit 2 ;;
 esac
 for name in $names; do
   if [[ -n "$only" && " $only " != *" $name "* ]]; then continue; fi
