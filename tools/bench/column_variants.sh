@@ -37,7 +37,7 @@
 #   r7soft column on that base with base friction 0.13 (against 0.5: the issue's basal-friction
 #   pair on the rough base), one thread each, about 1.5 h; then the r7soft column on that base
 #   lifted twice as fast (0.26 m/s: the lift-speed check on the rough base).
-# SIZE "studded_base": the base as the experiments' plane of glued beads, made of geometry
+# SIZE "studded_base": on the scene's base, the experiments' plane of glued beads made of geometry
 #   (`walls.base.bumps`: hemispheres of the grains' mean diameter, touching, on a hexagonal
 #   lattice; the plane lowered by their radius so their tops are at z = 0, where the packing
 #   stands, and the tube with it), with the grains' own rolling resistance (0.1) on it: the r7soft
@@ -173,37 +173,33 @@ case "$size" in
     run soft_rough_base_0.3_fast_lift "${soft[@]}" "${r7[@]}" --set "$(lift 0.260)"
     names="soft_rough_base_0.3 a0.8_r7_rough_base_0.3 soft_rough_base_0.3_friction_0.13
       soft_rough_base_0.3_fast_lift" ;;
-  studded_base)
+  studded_base | studded_checks)
+    # the scene's own base since commit c652e82 (these modes set it with --set before)
     soft=(--set materials.glass.youngs_modulus=0.25e6 --set simulation.deformation_damping.frequency=3000)
-    studded=(--set "walls.base.bumps={diameter=3.5e-3}" --set "walls.base.point=[0,0,-1.75e-3]"
-      --set walls.base.rolling_resistance=0.1 --set "tubes.tube.centre=[0,0,-1.75e-3]")
     sized=(--set packings.g.generate.radius=24.5e-3 --set tubes.tube.radius=24.5e-3)
     r7=(--set packings.g.generate.count=573 --set "packings.g.cache=$out/packing_573.csv")
-    run studded_0.5 "${soft[@]}" "${studded[@]}" "${r7[@]}" --set "$(lift 0.130)" &
-    run studded_friction_0.13 "${soft[@]}" "${studded[@]}" "${r7[@]}" --set "$(lift 0.130)" \
-      --set walls.base.friction=0.13 &
-    wait
-    run studded_friction_0.03 "${soft[@]}" "${studded[@]}" "${r7[@]}" --set "$(lift 0.130)" \
-      --set walls.base.friction=0.03 &
-    run a3_r3_studded "${soft[@]}" "${studded[@]}" --set packings.g.generate.radius=10.5e-3 \
-      --set tubes.tube.radius=10.5e-3 --set packings.g.generate.count=250 \
-      --set "packings.g.cache=$out/packing_250.csv" --set simulation.end_time=1.5 \
-      --set "$(lift 0.26)" &
-    wait
-    names="studded_0.5 studded_friction_0.13 studded_friction_0.03 a3_r3_studded" ;;
-  studded_checks)
-    soft=(--set materials.glass.youngs_modulus=0.25e6 --set simulation.deformation_damping.frequency=3000)
-    studded=(--set "walls.base.bumps={diameter=3.5e-3}" --set "walls.base.point=[0,0,-1.75e-3]"
-      --set walls.base.rolling_resistance=0.1 --set "tubes.tube.centre=[0,0,-1.75e-3]")
-    sized=(--set packings.g.generate.radius=24.5e-3 --set tubes.tube.radius=24.5e-3)
-    r7=(--set packings.g.generate.count=573 --set "packings.g.cache=$out/packing_573.csv")
-    run a0.8_r7_studded "${soft[@]}" "${studded[@]}" --set packings.g.generate.count=780 \
-      --set "packings.g.cache=$out/packing_780.csv" --set simulation.end_time=1.5 \
-      --set "$(lift 0.152)" &
-    (run studded_0.5 "${soft[@]}" "${studded[@]}" "${r7[@]}" --set "$(lift 0.130)"
-      run studded_fast_lift "${soft[@]}" "${studded[@]}" "${r7[@]}" --set "$(lift 0.260)") &
-    wait
-    names="a0.8_r7_studded studded_0.5 studded_fast_lift" ;;
+    if [[ $size == studded_base ]]; then
+      run studded_0.5 "${soft[@]}" "${r7[@]}" --set "$(lift 0.130)" &
+      run studded_friction_0.13 "${soft[@]}" "${r7[@]}" --set "$(lift 0.130)" \
+        --set walls.base.friction=0.13 &
+      wait
+      run studded_friction_0.03 "${soft[@]}" "${r7[@]}" --set "$(lift 0.130)" \
+        --set walls.base.friction=0.03 &
+      run a3_r3_studded "${soft[@]}" --set packings.g.generate.radius=10.5e-3 \
+        --set tubes.tube.radius=10.5e-3 --set packings.g.generate.count=250 \
+        --set "packings.g.cache=$out/packing_250.csv" --set simulation.end_time=1.5 \
+        --set "$(lift 0.26)" &
+      wait
+      names="studded_0.5 studded_friction_0.13 studded_friction_0.03 a3_r3_studded"
+    else
+      run a0.8_r7_studded "${soft[@]}" --set packings.g.generate.count=780 \
+        --set "packings.g.cache=$out/packing_780.csv" --set simulation.end_time=1.5 \
+        --set "$(lift 0.152)" &
+      (run studded_0.5 "${soft[@]}" "${r7[@]}" --set "$(lift 0.130)"
+        run studded_fast_lift "${soft[@]}" "${r7[@]}" --set "$(lift 0.260)") &
+      wait
+      names="a0.8_r7_studded studded_0.5 studded_fast_lift"
+    fi ;;
   *) echo "column_variants.sh: SIZE is small, r7, r7soft, aspect, scale, rough_base, studded_base or studded_checks, not '$size'" >&2; exit 2 ;;
 esac
 for name in $names; do
