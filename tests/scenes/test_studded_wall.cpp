@@ -14,8 +14,8 @@
 //   0.95-1.05 mm with the wall's damping or friction or the step changed by 5 %, 0.02 mm with
 //   the bumps 0.05 % larger; 1.14 mm in the sanitizer build, whose element update rounds
 //   differently) and stops there: in the last 0.1 s of 0.4 s it moves less than 0.1 mm, 1 % of
-//   its radius (measured 0.2 um here, at most 63 um in the sanitizer build, where its slide
-//   onto the bumps ends later; out of the pocket at 21 deg it covers 24 mm in that time);
+//   its radius (measured 0.2 um here, 8.7 um in the sanitizer build, where its slide onto the
+//   bumps ends later; out of the pocket at 21 deg it covers 24 mm in that time);
 // - at 21 deg it leaves it over the edge within 0.4 s (at least a pocket's row, 1.15 R, down
 //   the slope). Measured with this meshed ball: held at 19 deg, out at 20 (16 mm by 0.3 s);
 // - on a flat wall at 12 deg it rolls away (5/7 g sin(theta) t^2 / 2 = 16 mm in 0.15 s for a
