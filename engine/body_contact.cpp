@@ -2,9 +2,11 @@
 #include "engine/body_contact.hpp"
 
 #include "contact/centroid_line.hpp"
+#include "contact/tet_distance_bound.hpp"
 #include "engine/contact_stiffness.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
@@ -28,6 +30,31 @@ double buffer_for(const Model& m) {
 // stiffness does not limit the step.
 bool held(const Model& m, std::int32_t n) {
   return m.dof_mode[3 * n] != 0 && m.dof_mode[3 * n + 1] != 0 && m.dof_mode[3 * n + 2] != 0;
+}
+
+// A touching pair as the stable step sees it: a spring of stiffness r.stiffness on the weighted
+// motion sum_c w_c u_c of its 8 corners, w_c the corner's share of the normal force (+ on one
+// side, - on the other). Its share of the largest eigenvalue of M^-1/2 K M^-1/2 is bounded node
+// by node: by Cauchy-Schwarz, k (sum_c w_c u_c)^2 <= k W sum_c |w_c| u_c^2 with W = sum_c |w_c|,
+// so lambda_max of all the pairs' springs is at most max over nodes of
+// (sum over its pairs of k W |w_c|) / m_node. An upper bound, unlike a node's k / m alone, which
+// a spring between two light nodes exceeds.
+struct SpringWeights {
+  std::array<double, 8> corner{};  // the 4 corners of sub-tet i, then those of j
+  double sum = 0.0;                // W
+};
+
+SpringWeights spring_weights(const PairOutcome& r) {
+  SpringWeights w;
+  const Vec3 fb(r.normal_force_b[0], r.normal_force_b[1], r.normal_force_b[2]);
+  const double N = fb.norm();
+  if (!(N > 0.0)) return w;  // (then k = N^2 / 2E = 0 too)
+  const Vec3 n = fb / N;
+  for (int c = 0; c < 8; ++c) {
+    w.corner[c] = Vec3(r.force[3 * c], r.force[3 * c + 1], r.force[3 * c + 2]).dot(n) / N;
+    w.sum += std::fabs(w.corner[c]);
+  }
+  return w;
 }
 
 // The gap between two tetrahedra along the line through their centroids (fixed at the call).
@@ -93,7 +120,6 @@ BodyContact::BodyContact(const Model& m, const Distribution* dist)
   tet_positions_.resize(nt);
   node_stiffness_.assign(m.node_count, 0.0);
   node_flat_stiffness_per_penalty_.assign(m.node_count, 0.0);
-  node_contact_stiffness_.assign(m.node_count, 0.0);
   for (const SurfaceNode& s : m.surface)
     node_flat_stiffness_per_penalty_[s.node] = 16.0 * s.area / s.depth;
   if (dist_) {
@@ -167,26 +193,6 @@ void BodyContact::update_candidates(const Model& m) {
     if (kept) p.spring = old_pairs_[o].spring;
     pairs_.push_back(p);
   }
-  // each candidate node's flat-contact stiffness, with the stiffest penalty of its pairs (the
-  // nodes here: a rank has every pair of the nodes it owns)
-  for (const Pair& p : old_pairs_)
-    for (std::uint32_t t : {p.i, p.j})
-      if (here_[t])
-        for (std::int32_t n : corners_[t]) node_contact_stiffness_[n] = 0.0;
-  for (const Pair& p : pairs_)
-    for (std::uint32_t t : {p.i, p.j})
-      if (here_[t])
-        for (std::int32_t n : corners_[t])
-          node_contact_stiffness_[n] =
-              std::max(node_contact_stiffness_[n], p.penalty * node_flat_stiffness_per_penalty_[n]);
-  near_k_over_m_ = 0.0;
-  for (const Pair& p : pairs_)
-    for (std::uint32_t t : {p.i, p.j})
-      if (here_[t])
-        for (std::int32_t n : corners_[t])
-          if (owns(n) && m.mass[n] > 0.0 && !held(m, n))
-            near_k_over_m_ = std::max(near_k_over_m_, node_contact_stiffness_[n] / m.mass[n]);
-  if (dist_) near_k_over_m_ = -dist_->comm->min(-near_k_over_m_);
   // A pair that drops out of the list is far apart: its spring was released when it stopped
   // touching (evaluate() zeroes it then), so nothing is lost here.
   list_pair_tets();
@@ -374,13 +380,14 @@ void BodyContact::compute(const Model& m, double step_dt, std::vector<double>& f
   for (std::size_t q = 0; q < pairs_.size(); ++q) {
     if (!evaluated_[q] || !results_[q].touching) continue;
     const PairOutcome& r = results_[q];
+    const SpringWeights w = spring_weights(r);
     for (int side = 0; side < 2; ++side) {
       const std::uint32_t t = side == 0 ? pairs_[q].i : pairs_[q].j;
       if (!here_[t]) continue;
       const auto& c = corners_[t];
       for (int k = 0; k < 4; ++k) {
         for (int d = 0; d < 3; ++d) f[3 * c[k] + d] += r.force[12 * side + 3 * k + d];
-        node_stiffness_[c[k]] += r.stiffness;
+        node_stiffness_[c[k]] += r.stiffness * w.sum * std::fabs(w.corner[4 * side + k]);
       }
     }
   }
@@ -428,7 +435,7 @@ void BodyContact::sum_outcomes(const Model& m) {
     }
   }
   // the stable step's k / m over the nodes this rank owns (their stiffness is whole here)
-  max_k_over_m_ = near_k_over_m_;
+  max_k_over_m_ = 0.0;
   for (std::size_t q = 0; q < pairs_.size(); ++q) {
     if (!evaluated_[q] || !results_[q].touching) continue;
     for (std::uint32_t t : {pairs_[q].i, pairs_[q].j}) {
@@ -826,53 +833,62 @@ void BodyContact::share_outcomes() {
   }
 }
 
-void BodyContact::append_springs(const Model& m, std::vector<ContactSpring>& out) const {
-  const double margin = m.settings.contact_stiffness_margin();
-  // a corner's node for the estimate: a local node, or node_count + its foreign slot
-  auto node_of = [&](std::uint32_t t, int k) {
-    return here_[t] ? corners_[t][k] : m.node_count + corners_[t][k];
-  };
-  for (std::size_t q = 0; q < pairs_.size(); ++q) {
-    if (!evaluated_[q]) continue;
-    const PairOutcome& r = results_[q];
-    if (!r.touching || !(r.stiffness > 0.0)) continue;
-    const Vec3 fb(r.normal_force_b[0], r.normal_force_b[1], r.normal_force_b[2]);
-    const double N = fb.norm();
-    if (!(N > 0.0)) continue;
-    const Vec3 n = fb / N;
-    ContactSpring c;
-    c.count = 8;
-    c.k = margin * r.stiffness;
+double BodyContact::omega_squared_bound(const Model& m, double step) const {
+  // The pairs not touching that may touch within `step` with faces flush: a lower bound of their
+  // distance (their boxes' gap, then contact/tet_distance_bound.hpp, both on this step's
+  // corners) within kNearReach times what their relative speed covers in it, and a face of each
+  // nearly parallel across that reach (a pair that no axis separates counts too). A corner or an
+  // edge that closes first starts from no stiffness, which the next step's bound counts. The
+  // relative speed of any two points of two linear tetrahedra is at most that of their
+  // centroids plus each one's largest corner speed about its centroid; kNearReach leaves room
+  // for its growth within the step.
+  constexpr double kNearReach = 2.0;
+  auto centroid_and_spread = [&](std::uint32_t t, Vec3& centre, double& spread) {
+    const double* v = here_[t] ? m.v.data() : foreign_v_.data();
+    Vec3 c[4];
+    centre = Vec3::Zero();
     for (int k = 0; k < 4; ++k) {
-      c.node[k] = node_of(pairs_[q].i, k);
-      c.node[4 + k] = node_of(pairs_[q].j, k);
-      c.weight[k] = Vec3(r.force[3 * k], r.force[3 * k + 1], r.force[3 * k + 2]).dot(n) / N;
-      c.weight[4 + k] =
-          Vec3(r.force[12 + 3 * k], r.force[13 + 3 * k], r.force[14 + 3 * k]).dot(n) / N;
+      const std::int32_t n = corners_[t][k];
+      c[k] = Vec3(v[3 * n], v[3 * n + 1], v[3 * n + 2]);
+      centre += 0.25 * c[k];
     }
-    out.push_back(c);
-  }
-  // (the nodes here: a foreign node's springs act on its own rank)
-  node_mark_.assign(m.node_count, 0);
-  for (std::size_t q = 0; q < pairs_.size(); ++q)
-    if (evaluated_[q] && results_[q].touching)
-      for (std::uint32_t t : {pairs_[q].i, pairs_[q].j})
-        if (here_[t])
-          for (std::int32_t n : corners_[t]) node_mark_[n] = 1;
-  for (const Pair& p : pairs_)
+    spread = 0.0;
+    for (int k = 0; k < 4; ++k) spread = std::max(spread, (c[k] - centre).norm());
+  };
+  double near = 0.0;
+  const auto np = static_cast<std::int64_t>(pairs_.size());
+#pragma omp parallel for schedule(static) reduction(max \
+                                                    : near) if (pairs_.size() > kParallelMinPairs)
+  for (std::int64_t q = 0; q < np; ++q) {
+    if (evaluated_[q] && results_[q].touching) continue;
+    const Pair& p = pairs_[q];
+    Vec3 vi, vj;
+    double si = 0.0, sj = 0.0;
+    centroid_and_spread(p.i, vi, si);
+    centroid_and_spread(p.j, vj, sj);
+    const double reach = kNearReach * ((vi - vj).norm() + si + sj) * step;
+    const Aabb& a = tet_boxes_[p.i];
+    const Aabb& b = tet_boxes_[p.j];
+    double gap2 = 0.0;
+    for (int d = 0; d < 3; ++d) {
+      const double g = std::max(a.lo[d] - b.hi[d], b.lo[d] - a.hi[d]);
+      if (g > 0.0) gap2 += g * g;
+    }
+    if (gap2 > reach * reach) continue;
+    const TetPositions& ti = tet_positions_[p.i];
+    const TetPositions& tj = tet_positions_[p.j];
+    const double gap = contact::tet_distance_lower_bound(ti, tj);
+    if (gap > reach || (gap > 0.0 && !contact::faces_flush_within(ti, tj, reach))) continue;
     for (std::uint32_t t : {p.i, p.j}) {
       if (!here_[t]) continue;
-      for (std::int32_t n : corners_[t]) {
-        if (node_mark_[n] || !(node_contact_stiffness_[n] > 0.0) || held(m, n)) continue;
-        node_mark_[n] = 1;
-        ContactSpring c;
-        c.count = 1;
-        c.node[0] = n;
-        c.weight[0] = 1.0;
-        c.k = margin * node_contact_stiffness_[n];
-        out.push_back(c);
-      }
+      for (std::int32_t n : corners_[t])
+        if (owns(n) && m.mass[n] > 0.0 && !held(m, n))
+          near = std::max(near, p.penalty * node_flat_stiffness_per_penalty_[n] / m.mass[n]);
     }
+  }
+  double k_over_m = std::max(max_k_over_m_, near);
+  if (dist_) k_over_m = -dist_->comm->min(-k_over_m);
+  return m.settings.contact_stiffness_margin() * k_over_m;
 }
 
 void BodyContact::exchange_state(StateArchive& a) {
@@ -888,8 +904,6 @@ void BodyContact::exchange_state(StateArchive& a) {
   a.array("active_tets", active_tets_, L::variable);
   std::vector<Vec3> reference = verlet_.recorded_positions();
   a.array("verlet_reference", reference, L::variable);
-  a.array("node_contact_stiffness", node_contact_stiffness_);
-  a.value("near_k_over_m", near_k_over_m_);
   a.value("max_k_over_m", max_k_over_m_);
   a.value("energy", energy_);
   a.value("dissipated", dissipated_);

@@ -35,7 +35,6 @@
 #include "engine/contact_patch.hpp"
 #include "engine/distributed/distribution.hpp"
 #include "engine/model.hpp"
-#include "engine/stable_step/highest_frequency.hpp"
 #include "engine/state_archive.hpp"
 
 namespace femdem {
@@ -61,20 +60,16 @@ class BodyContact final : public ContactModel {
   void append_patches(std::vector<ContactPatch>& out) const override {
     out.insert(out.end(), patches_.begin(), patches_.end());
   }
-  // omega^2 <= omega_element^2 + max over nodes of k / m (see max_stiffness_over_mass), the
-  // springs counted with the settings' contact_stiffness_margin().
-  double stable_step(const Model& m, double dt_element, double dt) override {
-    if (!(max_k_over_m_ > 0.0)) return dt;
-    const double omega_el = 2.0 / dt_element;
-    const double k_over_m = m.settings.contact_stiffness_margin() * max_k_over_m_;
-    return std::min(dt, 2.0 / std::sqrt(omega_el * omega_el + k_over_m));
-  }
-
-  // What the bound counts, as springs, for the assembled estimate: each touching pair on its 8
-  // corners (stiffness twice its secant, the corners weighted by their shares of the normal
-  // force), and every other node of a candidate pair with the flat-contact stiffness it would
-  // have from its first touch.
-  void append_springs(const Model& m, std::vector<ContactSpring>& out) const override;
+  // The term the stable step adds, by Weyl's inequality, to the elements' own highest frequency
+  // squared, every step (contact_stiffness_margin() included): an upper bound of the largest
+  // eigenvalue of M^-1/2 K M^-1/2 with K the springs of the pairs touching in the last compute()
+  // (max_stiffness_over_mass), or, if larger, the k / m of a flat contact (16 p A / h on a node of
+  // boundary area share A and element depth h) on the nodes of the pairs that may touch within
+  // `step` with faces flush (body_contact.cpp): a flat overlap is that stiff from its first
+  // instant, and one step too long for it kicks the nodes by (omega dt)^2 / 2 times the closing
+  // speed. Other pairs add nothing until they touch: the step is set again after every compute(),
+  // and a corner or an edge that closes first starts from no stiffness. On a rank: collective.
+  double omega_squared_bound(const Model& m, double step) const;
 
   double energy() const { return energy_; }          // stored now (potential + springs)
   double dissipated() const { return dissipated_; }  // by friction in the last compute()
@@ -85,18 +80,13 @@ class BodyContact final : public ContactModel {
   double max_penetration_per_size() const { return max_penetration_per_size_; }
   // The bodies of the pair with that largest depth per element size (-1, -1: none touching).
   std::pair<int, int> deepest_bodies() const { return deepest_bodies_; }
-  // Largest over nodes of (sum of the contact stiffness on the node) / (its mass): the stable
-  // step bound adds it to the element frequency squared.
+  // Largest over nodes of (sum over the touching pairs at the node of k W |w_node|) / (its mass)
+  // (body_contact.cpp, spring_weights): a bound of the largest eigenvalue of the pairs' springs.
   double max_stiffness_over_mass() const { return max_k_over_m_; }
 
   // Candidate pairs listed (on a rank: those listed here) and touching (the whole model's).
   std::size_t candidate_pairs() const { return pairs_.size(); }
   std::size_t touching_pairs() const { return touching_; }
-  // On a rank: the other ranks' nodes its pairs read (for the assembled stable step's springs,
-  // which name them as node_count + k), and how many it received in the last step.
-  ForeignNodes foreign_nodes() const {
-    return {static_cast<std::int32_t>(foreign_nodes_.size()), contact_lists_};
-  }
   // Adds to per_body[b] the listed pairs with a sub-tet of body b held here (the contact work of
   // each body on this rank, for rebalancing).
   void count_pairs_per_body(std::span<double> per_body) const {
@@ -237,14 +227,10 @@ class BodyContact final : public ContactModel {
   std::vector<Aabb> tet_boxes_;              // of each contact sub-tet, this step (no margin)
   std::vector<TetPositions> tet_positions_;  // its corners, this step
   std::vector<std::uint32_t> active_tets_;   // the sub-tets of candidate pairs, sorted
-  std::vector<double> node_stiffness_;       // per model node, this step
-  // Per boundary node, the stiffness a flat contact would give it (8 p A / h: the potentials of
-  // both sides rise by 4 / h across their elements): counted for the stable step as soon as the
-  // node's sub-tets are candidates, because a flat contact is that stiff from its first touch.
-  // (16 A / h per node, times the penalty of the stiffest candidate pair the node is in.)
-  std::vector<double> node_flat_stiffness_per_penalty_, node_contact_stiffness_;
-  double near_k_over_m_ = 0.0;           // largest over the nodes of candidate pairs
-  mutable std::vector<char> node_mark_;  // scratch of append_springs, per model node
+  std::vector<double> node_stiffness_;       // per model node, this step (k W |w|)
+  // Per boundary node, the stiffness a flat contact gives it per unit penalty (16 A / h: the
+  // potentials of both sides rise by 4 / h across their elements).
+  std::vector<double> node_flat_stiffness_per_penalty_;
   double energy_ = 0.0, dissipated_ = 0.0, max_k_over_m_ = 0.0, max_penetration_ = 0.0,
          max_penetration_per_size_ = 0.0;
   std::size_t touching_ = 0;

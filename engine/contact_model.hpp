@@ -2,17 +2,17 @@
 #pragma once
 // What the time step asks of a kind of contact (bodies on rigid walls, bodies on each other):
 // the forces at the current positions, their energy and dissipation, the touching patches that
-// impact damping acts on, and the bound the contact's stiffness puts on the stable step. The
-// Simulation holds one of each kind and calls them in a fixed order, so the sums (and so the
-// bits) do not depend on anything else. A new kind of contact (e.g. cohesive bonds) is one class
-// implementing this, added to Simulation's list; a new law for an existing kind is one file in
-// contact/ and one name in contact/contact_laws.hpp.
+// impact damping acts on. The Simulation holds one of each kind and calls them in a fixed order,
+// so the sums (and so the bits) do not depend on anything else. A new kind of contact (e.g.
+// cohesive bonds) is one class implementing this, added to Simulation's list with its term of the
+// stable step (Simulation::set_time_step: WallContact::stable_step, or a bound of its springs'
+// largest eigenvalue as BodyContact::omega_squared_bound); a new law for an existing kind is one
+// file in contact/ and one name in contact/contact_laws.hpp.
 #include <vector>
 
 #include "contact/penalty_wall_law.hpp"
 #include "engine/contact_patch.hpp"
 #include "engine/model.hpp"
-#include "engine/stable_step/highest_frequency.hpp"
 
 namespace femdem {
 
@@ -29,15 +29,6 @@ class ContactModel {
   virtual void compute(Model& m, double step_dt, std::vector<double>& f, ContactSums& sums) = 0;
   // Appends the touching patches of the last compute() (for impact damping).
   virtual void append_patches(std::vector<ContactPatch>& out) const = 0;
-  // The stable step with this contact's stiffness, given the elements' bound dt_element and
-  // the bound so far. Both this and append_springs() count each spring
-  // m.settings.contact_stiffness_margin() times stiffer (contact is resolved at a smaller
-  // fraction of its limit than the elements).
-  virtual double stable_step(const Model& m, double dt_element, double dt) = 0;
-  // Appends the springs this contact adds to the model's stiffness now, for the assembled
-  // stable-step estimate (engine/stable_step/highest_frequency.hpp): the same contacts the
-  // bound of stable_step() counts.
-  virtual void append_springs(const Model& m, std::vector<ContactSpring>& out) const = 0;
 };
 
 }  // namespace femdem

@@ -441,7 +441,7 @@ bool Simulation::scale_masses(double element_dt_needed) {
   throw InstabilityError(msg.str());
 }
 
-double Simulation::element_and_contact_bound() {
+double Simulation::element_and_wall_bound() {
   const Model& m = model_;
   // (min is exact: the same bits whatever the threads)
   double dt_el = HUGE_VAL;
@@ -454,11 +454,18 @@ double Simulation::element_and_contact_bound() {
     for (std::int64_t e = 0; e < ne; ++e)
       dt_el = std::min(dt_el, elem_dt_[e] * std::sqrt(elem_mass_scale_[e]));
   }
-  double dt = dt_el = reduce_min(dt_el);
-  for (ContactModel* c : std::initializer_list<ContactModel*>{&wall_contact_, &body_contact_})
-    if (c->active()) dt = c->stable_step(m, dt_el, dt);
-  return dt;
+  dt_el = reduce_min(dt_el);
+  return wall_contact_.active() ? wall_contact_.stable_step(m, dt_el, dt_el) : dt_el;
 }
+
+namespace {
+// A step dt of the rest of the model lowered by a term omega2 added to its frequency squared.
+double with_added_frequency(double dt, double omega2) {
+  if (!(omega2 > 0.0)) return dt;
+  const double omega = 2.0 / dt;
+  return 2.0 / std::sqrt(omega * omega + omega2);
+}
+}  // namespace
 
 void Simulation::set_time_step() {
   const SimulationSettings& s = model_.settings;
@@ -469,18 +476,33 @@ void Simulation::set_time_step() {
   // rescaling ran away.)
   const bool added =
       !elem_mass_scale_.empty() && scale_masses(s.mass_scaling_time_step / s.safety());
-  double dt = stable_bound_ = element_and_contact_bound();
-  if (frequency_) dt = assembled_step(stable_bound_, added && steps_ == 0);
+  // The elements and the walls' node springs (each on one node) are measured by the assembled
+  // estimate; the springs between bodies are added every step by Weyl's inequality (the largest
+  // eigenvalue of a sum is at most the sum of the largest eigenvalues), from a bound that holds
+  // for whatever pairs touch now, with a flat contact's stiffness on the pairs that may touch
+  // within the step (BodyContact::omega_squared_bound). A contact that starts between two
+  // estimates is then counted from its first step without a ratio measured before it existed,
+  // and the pairs the candidate list holds but that cannot touch yet cost nothing.
+  const double bound = element_and_wall_bound();
+  const double rest = frequency_ ? assembled_step(bound, added && steps_ == 0) : bound;
+  // (the pairs that may touch within the longest step this can give)
+  const double omega2 =
+      body_contact_.active()
+          ? body_contact_.omega_squared_bound(
+                model_, s.time_step > 0.0 ? s.time_step : s.safety() * std::max(rest, bound))
+          : 0.0;
+  stable_bound_ = with_added_frequency(bound, omega2);
+  const double dt = with_added_frequency(rest, omega2);
   stable_dt_ = dt;
   dt_ = s.time_step > 0.0 ? s.time_step : s.safety() * dt;
 }
 
 double Simulation::assembled_step(double bound, bool force) {
   const Model& m = model_;
-  // Between estimates the bound follows the elements' shapes and the contacts every step; the
-  // step keeps the ratio to it that the last estimate measured. A bound that has moved by more
-  // than kRecheck since (a contact stiffening, an element being crushed) is re-estimated at
-  // once, at most every kMinGap steps, so a fast change cannot run far on an old ratio.
+  // Between estimates the bound follows the elements' shapes and the walls' springs every step;
+  // the step keeps the ratio to it that the last estimate measured. A bound that has moved by
+  // more than kRecheck since (a node reaching a wall, an element being crushed) is re-estimated
+  // at once, at most every kMinGap steps, so a fast change cannot run far on an old ratio.
   constexpr double kRecheck = 0.1;
   constexpr std::int64_t kMinGap = 5;
   // The ratio is kept within what the bound can be wrong by: the assembled frequency is at
@@ -493,11 +515,8 @@ double Simulation::assembled_step(double bound, bool force) {
   if (force || frequency_estimates_ == 0 || since >= m.settings.stable_step_interval ||
       (moved && since >= kMinGap)) {
     springs_.clear();
-    for (const ContactModel* c :
-         std::initializer_list<const ContactModel*>{&wall_contact_, &body_contact_})
-      if (c->active()) c->append_springs(m, springs_);
-    const FrequencyEstimate est =
-        frequency_->estimate(m, springs_, dist_ ? &*dist_ : nullptr, body_contact_.foreign_nodes());
+    if (wall_contact_.active()) wall_contact_.append_springs(m, springs_);
+    const FrequencyEstimate est = frequency_->estimate(m, springs_, dist_ ? &*dist_ : nullptr);
     ++frequency_estimates_;
     frequency_iterations_ += est.iterations;
     estimate_step_ = steps_;

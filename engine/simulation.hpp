@@ -142,10 +142,10 @@ class Simulation {
   // advances the material state and updates energies and element steps
   void compute_forces(double step_dt);
   void set_time_step();
-  // The smallest element step bound (with the mass scaling) lowered by the contacts' springs.
-  double element_and_contact_bound();
-  // The assembled estimate's step given the element-and-contact bound (re-estimating when due,
-  // or now if `force`).
+  // The smallest element step bound (with the mass scaling) lowered by the walls' springs.
+  double element_and_wall_bound();
+  // The assembled estimate's step (elements and walls) given their bound (re-estimating when
+  // due, or now if `force`).
   double assembled_step(double bound, bool force = false);
   // Selective mass scaling: raises the mass of elements whose stable step is below
   // `element_dt_needed` (conserving nodal momentum once the run has started); true if it added

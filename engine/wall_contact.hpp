@@ -28,6 +28,7 @@
 #include "engine/contact_model.hpp"
 #include "engine/distributed/distribution.hpp"
 #include "engine/exact_sum.hpp"
+#include "engine/stable_step/highest_frequency.hpp"
 #include "engine/state_archive.hpp"
 
 namespace femdem {
@@ -41,9 +42,10 @@ class WallContact final : public ContactModel {
   void append_patches(std::vector<ContactPatch>& out) const override;
   // Per node near a wall (within one element depth) the element's frequency plus the spring's,
   // with the dashpot's shrink factor; and each force-driven wall's own frequency on the springs.
-  double stable_step(const Model& m, double dt_element, double dt) override;
-  // Every node within an element depth of a wall, with its spring (as stable_step counts them).
-  void append_springs(const Model& m, std::vector<ContactSpring>& out) const override;
+  double stable_step(const Model& m, double dt_element, double dt);
+  // Every node within an element depth of a wall, with its spring (as stable_step counts them),
+  // for the assembled stable-step estimate (engine/stable_step/highest_frequency.hpp).
+  void append_springs(const Model& m, std::vector<ContactSpring>& out) const;
   // The (node, wall) pairs within reach, and how many times that list was built.
   std::size_t near_pairs() const { return near_.size(); }
   std::int64_t near_list_builds() const { return near_builds_; }

@@ -77,11 +77,6 @@ void HighestFrequency::apply(const Model& m, const std::vector<ContactSpring>& s
   const auto n = static_cast<std::int64_t>(inv_sqrt_mass_.size());
 #pragma omp parallel for schedule(static) if (n > 3 * kParallelMinNodes)
   for (std::int64_t i = 0; i < n; ++i) u_[i] = inv_sqrt_mass_[i] * v[i];
-  // the other ranks' nodes that springs reach: their u from their owners (their f is not used)
-  if (foreign_.count > 0) {
-    dist_->comm->exchange(foreign_.lists, u_.data(), u_.data() + n, 3);
-    std::fill(f_.begin() + n, f_.end(), 0.0);
-  }
   apply_stiffness(m, springs, u_.data(), f_.data());
 #pragma omp parallel for schedule(static) if (n > 3 * kParallelMinNodes)
   for (std::int64_t i = 0; i < n; ++i) y[i] = inv_sqrt_mass_[i] * f_[i];
@@ -99,13 +94,10 @@ double HighestFrequency::dot(const double* a, const double* b) {
 
 FrequencyEstimate HighestFrequency::estimate(const Model& m,
                                              const std::vector<ContactSpring>& springs,
-                                             const Distribution* dist, ForeignNodes foreign) {
+                                             const Distribution* dist) {
   FrequencyEstimate out;
   dist_ = dist;
-  foreign_ = dist ? foreign : ForeignNodes{};
   const std::size_t n = inv_sqrt_mass_.size();
-  u_.resize(n + 3 * static_cast<std::size_t>(foreign_.count));
-  f_.resize(u_.size());
   // the start vector's entries and size are the whole model's (the global dof numbering)
   auto global_dof = [&](std::size_t i) {
     return dist ? 3 * static_cast<std::size_t>(dist->part.nodes[i / 3]) + i % 3 : i;

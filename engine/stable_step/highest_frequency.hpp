@@ -2,8 +2,9 @@
 #pragma once
 // The highest natural frequency of the whole model as it is now, by Lanczos iterations on
 // M^-1/2 K M^-1/2, matrix-free: K is the elements' elastic stiffness at their current shape
-// (elements/tet10_elastic_action.hpp) plus the contact springs acting now, M the lumped masses
-// (mass scaling included), and held or driven dofs are left out (they do not oscillate).
+// (elements/tet10_elastic_action.hpp) plus the given springs (the walls' near their nodes), M
+// the lumped masses (mass scaling included), and held or driven dofs are left out (they do not
+// oscillate).
 //
 // Why: the element-by-element bound max_e omega_e (elements/tet10_frequency.hpp) is safe but
 // counts every element as if its nodes carried only its own share of mass, and contact springs
@@ -30,22 +31,14 @@
 namespace femdem {
 
 // A contact's stiffness as the estimate sees it: a spring of stiffness k (N/m, in every
-// direction) on the weighted motion sum_c weight_c u_c of up to 8 nodes (a body pair: the two
-// sub-tetrahedra's corners with the shares of the contact force, + on one side, - on the other;
-// a wall: one node with weight 1).
+// direction) on the weighted motion sum_c weight_c u_c of up to 8 nodes (a wall's: one node
+// with weight 1; the springs between bodies are bounded every step instead,
+// BodyContact::omega_squared_bound).
 struct ContactSpring {
   std::array<std::int32_t, 8> node{};
   std::array<double, 8> weight{};
   int count = 0;
   double k = 0.0;
-};
-
-// Nodes of other ranks that this rank's contact springs reach (engine/body_contact.hpp): a
-// spring's node nn + k (nn the local node count) is the k-th of them, and `lists` bring their
-// values from the ranks that own them.
-struct ForeignNodes {
-  std::int32_t count = 0;
-  std::span<const LocalPart::Neighbour> lists;
 };
 
 struct FrequencyEstimate {
@@ -61,10 +54,10 @@ class HighestFrequency {
   // estimate's start); tolerance: the residual relative to the Ritz value at which to stop.
   explicit HighestFrequency(const Model& m, int max_iterations = 24, double tolerance = 0.01);
 
-  // `dist`: this rank's part of a distributed run (the estimate is then the whole model's).
-  // `foreign`: the other ranks' nodes its springs reach.
+  // `dist`: this rank's part of a distributed run (the estimate is then the whole model's); the
+  // springs' nodes are this rank's.
   FrequencyEstimate estimate(const Model& m, const std::vector<ContactSpring>& springs,
-                             const Distribution* dist = nullptr, ForeignNodes foreign = {});
+                             const Distribution* dist = nullptr);
 
   // Applies K (elements at the current shape and the springs) to u, 3 per node: for tests.
   void apply_stiffness(const Model& m, const std::vector<ContactSpring>& springs, const double* u,
@@ -78,7 +71,6 @@ class HighestFrequency {
   void apply(const Model& m, const std::vector<ContactSpring>& springs, const double* v, double* y);
   double dot(const double* a, const double* b);
   const Distribution* dist_ = nullptr;  // of the estimate under way
-  ForeignNodes foreign_;
 
   int max_iterations_;
   double tolerance_;
