@@ -178,7 +178,8 @@ constexpr SummaryKey kSummaryKeys[] = {
     {"stable_time_step", "s", "the stable step estimate at the end", "always", always,
      [](const RunRecord& r) { return r.sim.stable_dt(); }},
     {"stable_time_step_bound", "s",
-     "the element-and-contact bound at the end: `stable_time_step` over it is what the assembled "
+     "the element-and-contact bound at the end (elements and walls, with the touching bodies' "
+     "springs added): `stable_time_step` over it is what the assembled "
      "estimate gained",
      "always", always, [](const RunRecord& r) { return r.sim.stable_bound(); }},
     {"stable_step_estimates", "-",
