@@ -21,6 +21,8 @@ namespace femdem::contact {
 namespace detail {
 // Each face of a tetrahedron (3 corners) and the corner opposite it.
 inline constexpr int kFaces[4][4] = {{1, 2, 3, 0}, {0, 2, 3, 1}, {0, 1, 3, 2}, {0, 1, 2, 3}};
+// The six edges of a tetrahedron.
+inline constexpr int kEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
 
 // The gap of b beyond the plane of face (i, j, k) of a, on the face's outward unit normal (the
 // side away from a's fourth corner l); -HUGE_VAL for a degenerate face.
@@ -85,13 +87,65 @@ inline double tet_distance_lower_bound(const std::array<P3, 4>& a, const std::ar
     gap = std::max(gap, detail::face_gap(b, f[0], f[1], f[2], f[3], a));
   }
   if (gap > 0.0) return gap;
-  static constexpr int kEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
-  for (const auto& ea : kEdges) {
+  for (const auto& ea : detail::kEdges) {
     const P3 da = sub(a[ea[1]], a[ea[0]]);
-    for (const auto& eb : kEdges)
+    for (const auto& eb : detail::kEdges)
       gap = std::max(gap, detail::axis_gap(a, b, cross(da, sub(b[eb[1]], b[eb[0]]))));
   }
   return gap;
+}
+
+// The decision body contact's stable step takes for a pair not touching (engine/body_contact.cpp,
+// omega_squared_bound): whether the two may close with faces flush within `reach`,
+//   g <= reach && (g <= 0 || faces_flush_within(a, b, reach)),  g = tet_distance_lower_bound(a, b),
+// with the same arithmetic, in one pass over the faces, and stopping at the first axis that
+// settles it: most candidate pairs of a packing lie further apart than their reach, which the
+// centroid line or the first faces show, where the bound and the flush test above each take
+// every face (and the flush test again).
+inline bool may_close_flush_within(const std::array<P3, 4>& a, const std::array<P3, 4>& b,
+                                   double reach) {
+  double length = 0.0;
+  const double along = centroid_line_separation(a, b, &length);
+  bool separated = false;
+  if (length > 0.0) {
+    const double gap = along / length;
+    if (gap > reach) return false;
+    separated = gap > 0.0;
+  }
+  bool flush = false;
+  for (int side = 0; side < 2; ++side) {
+    const std::array<P3, 4>& s = side == 0 ? a : b;
+    const std::array<P3, 4>& o = side == 0 ? b : a;
+    for (const auto& f : detail::kFaces) {
+      P3 n = cross(sub(s[f[1]], s[f[0]]), sub(s[f[2]], s[f[0]]));
+      const double len = std::sqrt(dot(n, n));
+      if (!(len > 0.0)) continue;
+      if (dot(n, sub(s[f[3]], s[f[0]])) > 0.0) n = {-n[0], -n[1], -n[2]};
+      // (the lowest of the quotients is the quotient of the lowest: division by len > 0 keeps
+      // the order, so this is detail::face_gap to the bit)
+      double lowest = HUGE_VAL;
+      int close = 0;
+      for (const P3& p : o) {
+        const double d = dot(n, sub(p, s[f[0]])) / len;
+        lowest = std::min(lowest, d);
+        close += d <= reach;
+      }
+      if (lowest > reach) return false;
+      if (lowest > 0.0) {
+        separated = true;
+        flush = flush || close >= 3;
+      }
+    }
+  }
+  if (separated) return flush;
+  // No face and not the centroid line separate them: an edge-edge axis that does leaves them
+  // apart without a face flush (false), none leaves them touching (true).
+  for (const auto& ea : detail::kEdges) {
+    const P3 da = sub(a[ea[1]], a[ea[0]]);
+    for (const auto& eb : detail::kEdges)
+      if (detail::axis_gap(a, b, cross(da, sub(b[eb[1]], b[eb[0]]))) > 0.0) return false;
+  }
+  return true;
 }
 
 }  // namespace femdem::contact

@@ -69,7 +69,7 @@ class BodyContact final : public ContactModel {
   // instant, and one step too long for it kicks the nodes by (omega dt)^2 / 2 times the closing
   // speed. Other pairs add nothing until they touch: the step is set again after every compute(),
   // and a corner or an edge that closes first starts from no stiffness. On a rank: collective.
-  double omega_squared_bound(const Model& m, double step) const;
+  double omega_squared_bound(const Model& m, double step);
 
   double energy() const { return energy_; }          // stored now (potential + springs)
   double dissipated() const { return dissipated_; }  // by friction in the last compute()
@@ -227,7 +227,12 @@ class BodyContact final : public ContactModel {
   std::vector<Aabb> tet_boxes_;              // of each contact sub-tet, this step (no margin)
   std::vector<TetPositions> tet_positions_;  // its corners, this step
   std::vector<std::uint32_t> active_tets_;   // the sub-tets of candidate pairs, sorted
-  std::vector<double> node_stiffness_;       // per model node, this step (k W |w|)
+  struct TetMotion {
+    Vec3 centre_velocity;  // of the sub-tet's centroid
+    double spread;         // its largest corner speed about the centroid
+  };
+  std::vector<TetMotion> tet_motion_;   // of the active sub-tets (omega_squared_bound's scratch)
+  std::vector<double> node_stiffness_;  // per model node, this step (k W |w|)
   // Per boundary node, the stiffness a flat contact gives it per unit penalty (16 A / h: the
   // potentials of both sides rise by 4 / h across their elements).
   std::vector<double> node_flat_stiffness_per_penalty_;

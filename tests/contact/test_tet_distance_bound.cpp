@@ -116,3 +116,47 @@ TEST(TetDistanceBound, FacesSetParallelAcrossAGap) {
   EXPECT_LE(tet_distance_lower_bound(a, sunk), 0.0);
   EXPECT_FALSE(faces_flush_within(a, sunk, 1.0));
 }
+
+// The stable step's one-pass decision (may_close_flush_within) is the bound and the flush test
+// above composed, on pairs apart, touching and set nearly flush, each at reaches from below to
+// above their gap: the early exits change no answer.
+TEST(TetDistanceBound, TheStepsDecisionIsTheBoundAndTheFlushTestComposed) {
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::uniform_real_distribution<double> small(-0.02, 0.02);
+  int counted = 0, flush_counted = 0, apart_not_flush = 0, trials = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const Tet a = random_tet(rng, {0.0, 0.0, 0.0}, 0.5);
+    Tet b;
+    if (trial % 3 == 0) {
+      b = random_tet(rng, {u(rng), u(rng), u(rng)}, 0.5);  // apart, touching or overlapping
+    } else {
+      // a face of a (0, 1, 2) copied a little beyond itself, each corner moved a little, and a
+      // fourth corner behind it: faces nearly flush across a small gap (or slightly crossing)
+      const P3 n = cross(sub(a[1], a[0]), sub(a[2], a[0]));
+      const double len = norm(n);
+      if (!(len > 0.0)) continue;
+      P3 out = {n[0] / len, n[1] / len, n[2] / len};
+      if (dot(out, sub(a[3], a[0])) > 0.0) out = {-out[0], -out[1], -out[2]};
+      const double gap = 0.03 * (u(rng) + 0.8);
+      for (int k = 0; k < 3; ++k)
+        for (int d = 0; d < 3; ++d) b[k][d] = a[k][d] + gap * out[d] + small(rng);
+      for (int d = 0; d < 3; ++d) b[3][d] = (a[0][d] + a[1][d] + a[2][d]) / 3.0 + 0.6 * out[d];
+    }
+    const double g = tet_distance_lower_bound(a, b);
+    for (const double reach : {0.0, 1e-3, 0.01, 0.03, 0.1, 0.5, 2.0}) {
+      const bool composed = g <= reach && (g <= 0.0 || faces_flush_within(a, b, reach));
+      ASSERT_EQ(may_close_flush_within(a, b, reach), composed)
+          << "trial " << trial << " reach " << reach << " bound " << g;
+      ++trials;
+      counted += composed;
+      flush_counted += composed && g > 0.0;
+      apart_not_flush += g > 0.0 && g <= reach && !composed;
+    }
+  }
+  // each branch of the decision met many times
+  EXPECT_GT(counted, 1000);
+  EXPECT_GT(flush_counted, 500);
+  EXPECT_GT(apart_not_flush, 500);
+  EXPECT_GT(trials, 15000);
+}
