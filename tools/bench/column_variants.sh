@@ -47,6 +47,9 @@
 #   a = 0.8 column of "aspect" (780 grains, lift 0.152 m/s, about 1.5 h) beside the r7soft column
 #   of base friction 0.5 (studded_0.5 again, the reference) and then the same lifted twice as
 #   fast (0.26 m/s: the lift-speed check).
+# SIZE "studded_scale": the scale pair on the studded base: the scene's 35 mm tube with the
+#   1,790 grains of "scale" (E 0.25 MPa, lift 0.155 m/s) on 2 threads (about 1.5 h), then the
+#   r7soft column of studded_base (studded_0.5) again on 1 thread, with the same engine.
 # ONLY (optional, a space-separated list): run only these names of the SIZE's list.
 set -uo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
@@ -200,7 +203,20 @@ case "$size" in
       wait
       names="a0.8_r7_studded studded_0.5 studded_fast_lift"
     fi ;;
-  *) echo "column_variants.sh: SIZE is small, r7, r7soft, aspect, scale, rough_base, studded_base or studded_checks, not '$size'" >&2; exit 2 ;;
+  studded_scale)
+    soft=(--set materials.glass.youngs_modulus=0.25e6 --set simulation.deformation_damping.frequency=3000)
+    sized=(--set packings.g.generate.count=1790 --set "packings.g.cache=$out/packing_1790.csv")
+    if [[ -z "$only" || " $only " == *" studded_full "* ]]; then
+      "$femdem" check "$scene" "${sized[@]}" > /dev/null
+      OMP_NUM_THREADS=2 /usr/bin/time -f "studded_full: user %U s" "$femdem" run "$scene" \
+        "${sized[@]}" "${soft[@]}" --out "$out/studded_full" --force --threads 2 --quiet --no-plot \
+        2>&1 | tail -1
+    fi
+    sized=(--set packings.g.generate.radius=24.5e-3 --set tubes.tube.radius=24.5e-3
+      --set packings.g.generate.count=573 --set "packings.g.cache=$out/packing_573.csv")
+    run studded_0.5 "${soft[@]}" --set "$(lift 0.130)"
+    names="studded_full studded_0.5" ;;
+  *) echo "column_variants.sh: SIZE is small, r7, r7soft, aspect, scale, rough_base, studded_base, studded_checks or studded_scale, not '$size'" >&2; exit 2 ;;
 esac
 for name in $names; do
   if [[ -n "$only" && " $only " != *" $name "* ]]; then continue; fi
