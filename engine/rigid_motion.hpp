@@ -30,33 +30,39 @@ struct RigidMotion {
 
 // From the current positions and (half-step) velocities; with accel, from the velocities
 // v + half_dt accel (the full-step velocities predicted with the last accelerations). mass 0
-// for a body without mass.
+// for a body without mass. One pass over the body's nodes: the sums are taken about its first
+// node (so that they stay of the body's size, not of its distance from the origin) and moved to
+// the centre of mass afterwards: L_c = sum m d x v - s x P and sum m r r^T = sum m d d^T -
+// M s s^T, with d = x - x_first, s = c - x_first, r = d - s, P the momentum.
 inline RigidMotion rigid_motion(const Model& m, const Body& b, const double* accel = nullptr,
                                 double half_dt = 0.0) {
-  auto velocity = [&](std::int32_t n) {
-    Vec3 v(m.v[3 * n], m.v[3 * n + 1], m.v[3 * n + 2]);
-    if (accel) v += half_dt * Vec3(accel[3 * n], accel[3 * n + 1], accel[3 * n + 2]);
-    return v;
-  };
   RigidMotion r;
   const std::int32_t n0 = b.first_node, n1 = b.first_node + b.node_count;
-  Vec3 c = Vec3::Zero(), p = Vec3::Zero();
+  if (n1 <= n0) return r;
+  const Vec3 origin(m.x[3 * n0], m.x[3 * n0 + 1], m.x[3 * n0 + 2]);
+  Vec3 s = Vec3::Zero(), p = Vec3::Zero(), h = Vec3::Zero();
+  double j[6] = {};  // sum m d d^T: xx, yy, zz, xy, xz, yz
   for (std::int32_t n = n0; n < n1; ++n) {
     const double mn = m.mass[n];
+    const Vec3 d = Vec3(m.x[3 * n], m.x[3 * n + 1], m.x[3 * n + 2]) - origin;
+    Vec3 v(m.v[3 * n], m.v[3 * n + 1], m.v[3 * n + 2]);
+    if (accel) v += half_dt * Vec3(accel[3 * n], accel[3 * n + 1], accel[3 * n + 2]);
     r.mass += mn;
-    c += mn * Vec3(m.x[3 * n], m.x[3 * n + 1], m.x[3 * n + 2]);
-    p += mn * velocity(n);
+    s += mn * d;
+    p += mn * v;
+    h += mn * d.cross(v);
+    j[0] += mn * d[0] * d[0], j[1] += mn * d[1] * d[1], j[2] += mn * d[2] * d[2];
+    j[3] += mn * d[0] * d[1], j[4] += mn * d[0] * d[2], j[5] += mn * d[1] * d[2];
   }
   if (!(r.mass > 0.0)) return r;
-  r.centre = c / r.mass;
+  const Vec3 c = s / r.mass;  // the centre, from the first node
+  r.centre = origin + c;
   r.velocity = p / r.mass;
-  Vec3 L = Vec3::Zero();
-  for (std::int32_t n = n0; n < n1; ++n) {
-    const double mn = m.mass[n];
-    const Vec3 d = Vec3(m.x[3 * n], m.x[3 * n + 1], m.x[3 * n + 2]) - r.centre;
-    L += mn * d.cross(velocity(n) - r.velocity);
-    r.inertia += mn * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose());
-  }
+  const Vec3 L = h - c.cross(p);
+  Eigen::Matrix3d rr;  // sum m r r^T about the centre
+  rr << j[0], j[3], j[4], j[3], j[1], j[5], j[4], j[5], j[2];
+  rr -= r.mass * c * c.transpose();
+  r.inertia = rr.trace() * Eigen::Matrix3d::Identity() - rr;
   // a solid body's inertia is positive definite; LDLT also copes with a flat one
   const auto ldlt = r.inertia.ldlt();
   r.angular_velocity = ldlt.solve(L);
