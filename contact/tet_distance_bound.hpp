@@ -24,17 +24,40 @@ inline constexpr int kFaces[4][4] = {{1, 2, 3, 0}, {0, 2, 3, 1}, {0, 1, 3, 2}, {
 // The six edges of a tetrahedron.
 inline constexpr int kEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
 
-// The gap of b beyond the plane of face (i, j, k) of a, on the face's outward unit normal (the
-// side away from a's fourth corner l); -HUGE_VAL for a degenerate face.
-inline double face_gap(const std::array<P3, 4>& a, int i, int j, int k, int l,
-                       const std::array<P3, 4>& b) {
-  P3 n = cross(sub(a[j], a[i]), sub(a[k], a[i]));
+// The signed distances d[k] of o's corners from the plane of face f of s (f: 3 corners, then the
+// fourth), along the face's outward unit normal (away from s's fourth corner); false for a
+// degenerate face.
+inline bool face_distances(const std::array<P3, 4>& s, const int (&f)[4],
+                           const std::array<P3, 4>& o, double d[4]) {
+  P3 n = cross(sub(s[f[1]], s[f[0]]), sub(s[f[2]], s[f[0]]));
   const double len = std::sqrt(dot(n, n));
-  if (!(len > 0.0)) return -HUGE_VAL;
-  if (dot(n, sub(a[l], a[i])) > 0.0) n = {-n[0], -n[1], -n[2]};
-  double lowest = HUGE_VAL;
-  for (const P3& p : b) lowest = std::min(lowest, dot(n, sub(p, a[i])));
-  return lowest / len;  // (a lies on the other side of the plane: its own gap is 0)
+  if (!(len > 0.0)) return false;
+  if (dot(n, sub(s[f[3]], s[f[0]])) > 0.0) n = {-n[0], -n[1], -n[2]};
+  for (int k = 0; k < 4; ++k) d[k] = dot(n, sub(o[k], s[f[0]])) / len;
+  return true;
+}
+
+// Calls visit(d) with the distances (face_distances) of the other's corners from each
+// non-degenerate face of a, then of b, until it returns true; true when it did.
+template <class Visit>
+bool any_face(const std::array<P3, 4>& a, const std::array<P3, 4>& b, Visit visit) {
+  for (int side = 0; side < 2; ++side) {
+    const std::array<P3, 4>& s = side == 0 ? a : b;
+    const std::array<P3, 4>& o = side == 0 ? b : a;
+    for (const auto& f : kFaces) {
+      double d[4];
+      if (face_distances(s, f, o, d) && visit(d)) return true;
+    }
+  }
+  return false;
+}
+
+// The gap of b beyond the plane of face f of a (a lies on the other side of it: its own gap is
+// 0); -HUGE_VAL for a degenerate face.
+inline double face_gap(const std::array<P3, 4>& a, const int (&f)[4], const std::array<P3, 4>& b) {
+  double d[4];
+  if (!face_distances(a, f, b, d)) return -HUGE_VAL;
+  return std::min(std::min(d[0], d[1]), std::min(d[2], d[3]));
 }
 
 // The gap between the projections of a and b on the unit axis along n (-HUGE_VAL when n is 0).
@@ -57,25 +80,15 @@ inline double axis_gap(const std::array<P3, 4>& a, const std::array<P3, 4>& b, c
 // face or an edge first otherwise: its overlap, and so its penalty stiffness, grows from zero.)
 inline bool faces_flush_within(const std::array<P3, 4>& a, const std::array<P3, 4>& b,
                                double reach) {
-  for (int side = 0; side < 2; ++side) {
-    const std::array<P3, 4>& s = side == 0 ? a : b;
-    const std::array<P3, 4>& o = side == 0 ? b : a;
-    for (const auto& f : detail::kFaces) {
-      P3 n = cross(sub(s[f[1]], s[f[0]]), sub(s[f[2]], s[f[0]]));
-      const double len = std::sqrt(dot(n, n));
-      if (!(len > 0.0)) continue;
-      if (dot(n, sub(s[f[3]], s[f[0]])) > 0.0) n = {-n[0], -n[1], -n[2]};
-      int close = 0;
-      bool separates = true;
-      for (const P3& p : o) {
-        const double d = dot(n, sub(p, s[f[0]])) / len;
-        separates = separates && d > 0.0;
-        close += d <= reach;
-      }
-      if (separates && close >= 3) return true;
+  return detail::any_face(a, b, [reach](const double(&d)[4]) {
+    int close = 0;
+    bool separates = true;
+    for (const double dk : d) {
+      separates = separates && dk > 0.0;
+      close += dk <= reach;
     }
-  }
-  return false;
+    return separates && close >= 3;
+  });
 }
 
 inline double tet_distance_lower_bound(const std::array<P3, 4>& a, const std::array<P3, 4>& b) {
@@ -83,8 +96,8 @@ inline double tet_distance_lower_bound(const std::array<P3, 4>& a, const std::ar
   const double along = centroid_line_separation(a, b, &length);
   double gap = length > 0.0 ? along / length : -HUGE_VAL;
   for (const auto& f : detail::kFaces) {
-    gap = std::max(gap, detail::face_gap(a, f[0], f[1], f[2], f[3], b));
-    gap = std::max(gap, detail::face_gap(b, f[0], f[1], f[2], f[3], a));
+    gap = std::max(gap, detail::face_gap(a, f, b));
+    gap = std::max(gap, detail::face_gap(b, f, a));
   }
   if (gap > 0.0) return gap;
   for (const auto& ea : detail::kEdges) {
@@ -102,48 +115,46 @@ inline double tet_distance_lower_bound(const std::array<P3, 4>& a, const std::ar
 // settles it: most candidate pairs of a packing lie further apart than their reach, which the
 // centroid line or the first faces show, where the bound and the flush test above each take
 // every face (and the flush test again).
+// `bound` receives the largest gap it measured: a lower bound of the distance when positive
+// (-HUGE_VAL when it measured none).
 inline bool may_close_flush_within(const std::array<P3, 4>& a, const std::array<P3, 4>& b,
-                                   double reach) {
+                                   double reach, double& bound) {
+  bound = -HUGE_VAL;
   double length = 0.0;
   const double along = centroid_line_separation(a, b, &length);
   bool separated = false;
   if (length > 0.0) {
     const double gap = along / length;
+    bound = gap;
     if (gap > reach) return false;
     separated = gap > 0.0;
   }
   bool flush = false;
-  for (int side = 0; side < 2; ++side) {
-    const std::array<P3, 4>& s = side == 0 ? a : b;
-    const std::array<P3, 4>& o = side == 0 ? b : a;
-    for (const auto& f : detail::kFaces) {
-      P3 n = cross(sub(s[f[1]], s[f[0]]), sub(s[f[2]], s[f[0]]));
-      const double len = std::sqrt(dot(n, n));
-      if (!(len > 0.0)) continue;
-      if (dot(n, sub(s[f[3]], s[f[0]])) > 0.0) n = {-n[0], -n[1], -n[2]};
-      // (the lowest of the quotients is the quotient of the lowest: division by len > 0 keeps
-      // the order, so this is detail::face_gap to the bit)
-      double lowest = HUGE_VAL;
-      int close = 0;
-      for (const P3& p : o) {
-        const double d = dot(n, sub(p, s[f[0]])) / len;
-        lowest = std::min(lowest, d);
-        close += d <= reach;
-      }
-      if (lowest > reach) return false;
-      if (lowest > 0.0) {
-        separated = true;
-        flush = flush || close >= 3;
-      }
+  const bool beyond = detail::any_face(a, b, [&](const double(&d)[4]) {
+    double lowest = HUGE_VAL;  // detail::face_gap
+    int close = 0;
+    for (const double dk : d) {
+      lowest = std::min(lowest, dk);
+      close += dk <= reach;
     }
-  }
+    bound = std::max(bound, lowest);
+    if (lowest > 0.0) {
+      separated = true;
+      flush = flush || close >= 3;
+    }
+    return lowest > reach;
+  });
+  if (beyond) return false;
   if (separated) return flush;
   // No face and not the centroid line separate them: an edge-edge axis that does leaves them
   // apart without a face flush (false), none leaves them touching (true).
   for (const auto& ea : detail::kEdges) {
     const P3 da = sub(a[ea[1]], a[ea[0]]);
-    for (const auto& eb : detail::kEdges)
-      if (detail::axis_gap(a, b, cross(da, sub(b[eb[1]], b[eb[0]]))) > 0.0) return false;
+    for (const auto& eb : detail::kEdges) {
+      const double gap = detail::axis_gap(a, b, cross(da, sub(b[eb[1]], b[eb[0]])));
+      bound = std::max(bound, gap);
+      if (gap > 0.0) return false;
+    }
   }
   return true;
 }

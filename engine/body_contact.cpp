@@ -118,6 +118,7 @@ BodyContact::BodyContact(const Model& m, const Distribution* dist)
   node_positions_.resize(nodes_.size());
   tet_boxes_.resize(nt);
   tet_positions_.resize(nt);
+  tet_travel_.assign(nt, 0.0);
   node_stiffness_.assign(m.node_count, 0.0);
   node_flat_stiffness_per_penalty_.assign(m.node_count, 0.0);
   for (const SurfaceNode& s : m.surface)
@@ -250,6 +251,7 @@ void BodyContact::keep_near_other_bodies(const Model& m) {
 void BodyContact::list_pair_tets() {
   results_.resize(pairs_.size());
   evaluated_.assign(pairs_.size(), 0);
+  pair_clearance_.assign(pairs_.size(), -HUGE_VAL);
   remote_.assign(pairs_.size(), 0);  // (a rank's: set by list_shared_pairs)
   active_tets_.clear();
   for (const Pair& p : pairs_) {
@@ -269,8 +271,17 @@ void BodyContact::update_tet_boxes(const Model& m, const std::vector<std::uint32
     TetPositions& p = tet_positions_[t];
     const auto& c = corners_[t];
     const double* x = here_[t] ? m.x.data() : foreign_x_.data();
-    for (int k = 0; k < 4; ++k)
-      for (int d = 0; d < 3; ++d) p[k][d] = x[3 * c[k] + d];
+    double moved2 = 0.0;  // the largest squared displacement of a corner since the last update
+    for (int k = 0; k < 4; ++k) {
+      double d2 = 0.0;
+      for (int d = 0; d < 3; ++d) {
+        const double xk = x[3 * c[k] + d];
+        d2 += (xk - p[k][d]) * (xk - p[k][d]);
+        p[k][d] = xk;
+      }
+      moved2 = std::max(moved2, d2);
+    }
+    tet_travel_[t] += std::sqrt(moved2);
     for (int d = 0; d < 3; ++d) {
       b.lo[d] = std::min(std::min(p[0][d], p[1][d]), std::min(p[2][d], p[3][d]));
       b.hi[d] = std::max(std::max(p[0][d], p[1][d]), std::max(p[2][d], p[3][d]));
@@ -297,7 +308,13 @@ void BodyContact::evaluate_pairs(const Model& m, double step_dt) {
     const Aabb& b = tet_boxes_[p.j];
     const bool apart = a.hi[0] <= b.lo[0] || b.hi[0] <= a.lo[0] || a.hi[1] <= b.lo[1] ||
                        b.hi[1] <= a.lo[1] || a.hi[2] <= b.lo[2] || b.hi[2] <= a.lo[2];
-    if (apart && !p.spring.stretched()) {
+    // Nor does a pair a lower bound of whose distance, found at an earlier step
+    // (omega_squared_bound), its sub-tets have not travelled since: kClearance of its size
+    // (far above the bound's and the sums' round-off) keeps it evaluated near touching.
+    constexpr double kClearance = 1e-6;
+    if ((apart ||
+         pair_clearance_[q] - tet_travel_[p.i] - tet_travel_[p.j] > kClearance * tet_depth_[p.i]) &&
+        !p.spring.stretched()) {
       evaluated_[q] = 0;
       continue;
     }
@@ -880,8 +897,16 @@ double BodyContact::omega_squared_bound(const Model& m, double step) {
       const double g = std::max(a.lo[d] - b.hi[d], b.lo[d] - a.hi[d]);
       if (g > 0.0) gap2 += g * g;
     }
-    if (gap2 > reach * reach) continue;
-    if (!contact::may_close_flush_within(tet_positions_[p.i], tet_positions_[p.j], reach)) continue;
+    const double travelled = tet_travel_[p.i] + tet_travel_[p.j];
+    if (gap2 > reach * reach) {
+      pair_clearance_[q] = std::sqrt(gap2) + travelled;
+      continue;
+    }
+    double bound = 0.0;
+    const bool may_close =
+        contact::may_close_flush_within(tet_positions_[p.i], tet_positions_[p.j], reach, bound);
+    pair_clearance_[q] = bound + travelled;
+    if (!may_close) continue;
     for (std::uint32_t t : {p.i, p.j}) {
       if (!here_[t]) continue;
       for (std::int32_t n : corners_[t])

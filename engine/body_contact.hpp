@@ -231,7 +231,15 @@ class BodyContact final : public ContactModel {
     Vec3 centre_velocity;  // of the sub-tet's centroid
     double spread;         // its largest corner speed about the centroid
   };
-  std::vector<TetMotion> tet_motion_;   // of the active sub-tets (omega_squared_bound's scratch)
+  std::vector<TetMotion> tet_motion_;  // of the active sub-tets (omega_squared_bound's scratch)
+  // Per contact sub-tet: the sum over the steps of its corners' largest displacement in each
+  // (update_tet_boxes), so that two sub-tets have come at most the difference of their sums
+  // closer since any step. Per candidate pair: a lower bound of its distance at a step plus
+  // both sums then (pair_clearance_ - tet_travel_[i] - tet_travel_[j] bounds its distance now;
+  // -HUGE_VAL: none yet). A pair whose bound is positive cannot touch, and evaluate_pairs skips
+  // it as it skips a pair whose boxes are apart.
+  std::vector<double> tet_travel_;
+  std::vector<double> pair_clearance_;
   std::vector<double> node_stiffness_;  // per model node, this step (k W |w|)
   // Per boundary node, the stiffness a flat contact gives it per unit penalty (16 A / h: the
   // potentials of both sides rise by 4 / h across their elements).

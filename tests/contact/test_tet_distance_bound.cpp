@@ -119,7 +119,8 @@ TEST(TetDistanceBound, FacesSetParallelAcrossAGap) {
 
 // The stable step's one-pass decision (may_close_flush_within) is the bound and the flush test
 // above composed, on pairs apart, touching and set nearly flush, each at reaches from below to
-// above their gap: the early exits change no answer.
+// above their gap: the early exits change no answer. The gap it reports for the pair (body
+// contact's clearance) is never above the bound.
 TEST(TetDistanceBound, TheStepsDecisionIsTheBoundAndTheFlushTestComposed) {
   std::mt19937 rng(23);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -146,8 +147,15 @@ TEST(TetDistanceBound, TheStepsDecisionIsTheBoundAndTheFlushTestComposed) {
     const double g = tet_distance_lower_bound(a, b);
     for (const double reach : {0.0, 1e-3, 0.01, 0.03, 0.1, 0.5, 2.0}) {
       const bool composed = g <= reach && (g <= 0.0 || faces_flush_within(a, b, reach));
-      ASSERT_EQ(may_close_flush_within(a, b, reach), composed)
+      double bound = 0.0;
+      ASSERT_EQ(may_close_flush_within(a, b, reach, bound), composed)
           << "trial " << trial << " reach " << reach << " bound " << g;
+      // the gap it reports is one of the bound's axes (so below the distance, tested above),
+      // and positive whenever the bound is
+      ASSERT_LE(bound, g) << "trial " << trial;
+      if (g > 0.0) {
+        ASSERT_GT(bound, 0.0) << "trial " << trial;
+      }
       ++trials;
       counted += composed;
       flush_counted += composed && g > 0.0;
