@@ -13,7 +13,7 @@
 //   6.8 mm at rest, 2026-11-30);
 // - the energy balance within 1 % (friction, damping and contact accounted);
 // - mass scaling adds under 1 % of a unit's mass.
-// About 18 min on 2 threads (docs/PERFORMANCE.md; 17.6 min as ctest, 2026-12-07).
+// About 8 min on 2 threads (docs/PERFORMANCE.md; 7.9 min as ctest, 2026-12-08).
 #include <gtest/gtest.h>
 
 #include <cmath>
