@@ -48,7 +48,8 @@
 #   of base friction 0.5 (studded_0.5 again, the reference) and then the same lifted twice as
 #   fast (0.26 m/s: the lift-speed check).
 # SIZE "studded_scale": the scale pair on the studded base: the scene's 35 mm tube with the
-#   1,790 grains of "scale" (E 0.25 MPa, lift 0.155 m/s) on 2 threads (about 1.5 h), then the
+#   1,790 grains of "scale" (E 0.25 MPa, lift 0.155 m/s) on 2 threads (about 4 h: 0.1 s of the
+#   collapse took 38 min on a shared machine, 2026-12-08, and the r7 column rests at 0.62 s), then the
 #   r7soft column of studded_base (studded_0.5) again on 1 thread, with the same engine.
 # ONLY (optional, a space-separated list): run only these names of the SIZE's list.
 set -uo pipefail
@@ -67,11 +68,11 @@ flat=(--set "walls.base.point=[0,0,0]" --set "tubes.tube.centre=[0,0,0]")
 smooth=("${flat[@]}" --set walls.base.rolling_resistance=0.1)
 coefficient=("${flat[@]}" --set walls.base.rolling_resistance=0.3)
 lift() { echo "tubes.tube.velocity_history=[[0,0,0,0],[0.02,0,0,0],[0.022,0,0,$1]]"; }
-run() {  # name, options...
-  local name=$1; shift
+run() {  # name, options... (on one thread; threads=N run ... for more)
+  local name=$1 n=${threads:-1}; shift
   if [[ -n "$only" && " $only " != *" $name "* ]]; then return; fi
-  OMP_NUM_THREADS=1 /usr/bin/time -f "$name: user %U s" "$femdem" run "$scene" \
-    "${sized[@]}" "$@" --out "$out/$name" --force --threads 1 --quiet --no-plot 2>&1 | tail -1
+  OMP_NUM_THREADS=$n /usr/bin/time -f "$name: user %U s" "$femdem" run "$scene" \
+    "${sized[@]}" "$@" --out "$out/$name" --force --threads "$n" --quiet --no-plot 2>&1 | tail -1
 }
 case "$size" in
   small)
@@ -150,11 +151,8 @@ case "$size" in
     soft=(--set materials.glass.youngs_modulus=0.25e6 --set simulation.deformation_damping.frequency=3000)
     sized=(--set packings.g.generate.count=1790 --set "packings.g.cache=$out/packing_1790.csv"
       "${coefficient[@]}")
-    if [[ -z "$only" || " $only " == *" full "* ]]; then
-      "$femdem" check "$scene" "${sized[@]}" > /dev/null
-      OMP_NUM_THREADS=2 /usr/bin/time -f "full: user %U s" "$femdem" run "$scene" \
-        "${sized[@]}" "${soft[@]}" --out "$out/full" --force --threads 2 --quiet --no-plot 2>&1 | tail -1
-    fi
+    "$femdem" check "$scene" "${sized[@]}" > /dev/null
+    threads=2 run full "${soft[@]}"
     sized=(--set packings.g.generate.radius=24.5e-3 --set packings.g.generate.count=573
       --set "packings.g.cache=$out/packing_573.csv" --set tubes.tube.radius=24.5e-3
       "${coefficient[@]}")
@@ -206,12 +204,8 @@ case "$size" in
   studded_scale)
     soft=(--set materials.glass.youngs_modulus=0.25e6 --set simulation.deformation_damping.frequency=3000)
     sized=(--set packings.g.generate.count=1790 --set "packings.g.cache=$out/packing_1790.csv")
-    if [[ -z "$only" || " $only " == *" studded_full "* ]]; then
-      "$femdem" check "$scene" "${sized[@]}" > /dev/null
-      OMP_NUM_THREADS=2 /usr/bin/time -f "studded_full: user %U s" "$femdem" run "$scene" \
-        "${sized[@]}" "${soft[@]}" --out "$out/studded_full" --force --threads 2 --quiet --no-plot \
-        2>&1 | tail -1
-    fi
+    "$femdem" check "$scene" "${sized[@]}" > /dev/null
+    threads=2 run studded_full "${soft[@]}"
     sized=(--set packings.g.generate.radius=24.5e-3 --set tubes.tube.radius=24.5e-3
       --set packings.g.generate.count=573 --set "packings.g.cache=$out/packing_573.csv")
     run studded_0.5 "${soft[@]}" --set "$(lift 0.130)"
